@@ -1,0 +1,32 @@
+// RegressionPair: one extracted event y = phi * theta + e of the paper's eq. (13).
+//
+//   y   = Delta(F)            the differenced force, N (longitudinal: traction - brake, corrected
+//                             for rotating inertia; lateral: F_yf cos(delta_f) + F_yr)
+//   phi = [Delta(a), 1]       the differenced acceleration, m/s^2, and the intercept
+//   theta = [M, mu]           mass, kg, and the model imprecision mu, N
+//   e ~ N(0, sigma^2 / weight)
+//
+// The weight lets blocks with different noise levels share one regression (longitudinal and
+// lateral pairs are not equally precise); weight 1 is the reference block.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "vmass/core/time.hpp"
+
+namespace vmass {
+
+enum class Block : std::uint8_t { kLongitudinal = 0, kLateral = 1 };
+constexpr int kBlockCount = 2;
+std::string_view block_name(Block b);
+
+struct RegressionPair {
+  TimeUs time_us = 0;
+  Block block = Block::kLongitudinal;
+  double y_n = 0.0;           ///< differenced force, N
+  double delta_accel_mps2 = 0.0;  ///< phi[0], differenced acceleration, m/s^2
+  double weight = 1.0;        ///< relative precision, > 0
+};
+
+}  // namespace vmass
