@@ -1,0 +1,65 @@
+// Estimate: what the pipeline publishes at each tick: mass, model imprecision mu, the 95%
+// interval, a status with its reason, and availability per block.
+//
+// Status:
+//   initialising  no belief yet (no standstill window, not driving)
+//   static_only   the static initialisation (eq. 3) only; no dynamic event used yet
+//   converging    dynamic events are refining the estimate
+//   converged     the 95% interval half-width is below converged_ci_halfwidth_fraction * mass
+//   degraded      inputs an enabled block needs are stale or invalid at this tick; the last
+//                 estimate is held
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "vmass/core/regression_pair.hpp"
+#include "vmass/core/sample.hpp"
+#include "vmass/core/supervisor.hpp"
+
+namespace vmass {
+
+enum class EstimateStatus : std::uint8_t {
+  kInitialising = 0,
+  kStaticOnly,
+  kConverging,
+  kConverged,
+  kDegraded
+};
+
+enum class StatusReason : std::uint8_t {
+  kWaitingForStandstill = 0,  ///< initialising: no standstill window yet
+  kStaticInitialised,         ///< static mass from the deflection, no event yet
+  kLoadChanged,               ///< re-initialised at standstill: the load changed
+  kNoStaticPrior,             ///< driving started before any standstill: prior = empty mass
+  kRefining,                  ///< events are being used
+  kIntervalNarrow,            ///< converged
+  kInputsInvalid,             ///< degraded: see invalid_inputs
+  kRestored,                  ///< state restored from a saved estimate
+};
+
+std::string_view status_name(EstimateStatus s);
+std::string_view reason_name(StatusReason r);
+
+struct Estimate {
+  TimeUs time_us = 0;
+  double mass_kg = 0.0;
+  double mu_n = 0.0;
+  double mass_std_kg = 0.0;
+  double ci_low_kg = 0.0;
+  double ci_high_kg = 0.0;
+  double initial_mass_kg = 0.0;  ///< the static (or empty-mass) prior of the current load
+  long pairs_used = 0;
+  EstimateStatus status = EstimateStatus::kInitialising;
+  StatusReason reason = StatusReason::kWaitingForStandstill;
+  InputMask invalid_inputs = 0;  ///< inputs needed but invalid at this tick
+  std::array<BlockCounters, kBlockCount> blocks{};
+
+  bool has_mass() const { return status != EstimateStatus::kInitialising; }
+  /// Human-readable reason, e.g. "inputs invalid: speed, yaw_rate" (allocates; not for hot paths).
+  std::string describe_reason() const;
+};
+
+}  // namespace vmass

@@ -1,0 +1,76 @@
+// Supervisor: decides which extracted pairs reach the regressor (paper Fig. 3, eq. 13).
+//
+// The extractors apply the activation conditions C1 (Table II) and C2 (Table III); the
+// supervisor adds an innovation gate against outliers that the gates let through (gear shifts,
+// torque steps the wheel-torque signal models badly, kerbs):
+//   nu = y - phi theta_hat,  S = predicted variance of y (regressor's belief + noise)
+//   accept when nu^2 <= g^2 S            (g = innovation_gate_sigma)
+// The gate is open (everything accepted) for the first min_pairs_before_gating pairs after a
+// (re)start, while the belief is still the wide prior, and after max_consecutive_rejections
+// rejections in a row one pair is let through, so that a wrong belief cannot lock itself in.
+//
+// It also counts, per block, the ticks, the candidates, the accepted pairs and the innovation
+// rejections: availability = accepted / ticks.
+//
+// Not thread-safe; no allocation.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "vmass/core/extraction.hpp"
+#include "vmass/core/mass_regressor.hpp"
+
+namespace vmass {
+
+struct SupervisorParams {
+  double innovation_gate_sigma = 4.0;
+  int min_pairs_before_gating = 30;
+  int max_consecutive_rejections = 50;
+
+  std::string validate() const;
+};
+
+struct BlockCounters {
+  long ticks = 0;
+  long candidates = 0;          ///< pairs that passed the block's gates
+  long accepted = 0;            ///< pairs handed to the regressor
+  long rejected_innovation = 0;
+  double availability() const {
+    return ticks > 0 ? static_cast<double>(accepted) / static_cast<double>(ticks) : 0.0;
+  }
+};
+
+/// One diagnostic record per tick and block (published on the debug channel).
+struct PairEvent {
+  RegressionPair pair;
+  PairVerdict verdict = PairVerdict::kWarmingUp;
+  double predicted_y_n = 0.0;
+  double innovation_variance_n2 = 0.0;
+  double test_ratio = 0.0;  ///< |nu| / sqrt(S)
+  bool has_candidate = false;
+};
+
+class Supervisor {
+ public:
+  explicit Supervisor(const SupervisorParams& params);
+
+  /// Offer one block's extraction for this tick to `regressor`. Returns the diagnostic record;
+  /// `*estimate_changed` is set when the regressor's published state changed.
+  PairEvent offer(Block block, const Extraction& extraction, MassRegressor& regressor,
+                  bool* estimate_changed);
+
+  /// The regressor was reset (new prior): the gate opens again.
+  void on_regressor_reset();
+
+  const BlockCounters& counters(Block b) const { return counters_[static_cast<int>(b)]; }
+  void restore_counters(Block b, const BlockCounters& c) { counters_[static_cast<int>(b)] = c; }
+
+ private:
+  SupervisorParams params_;
+  std::array<BlockCounters, kBlockCount> counters_{};
+  long pairs_since_reset_ = 0;
+  int consecutive_rejections_ = 0;
+};
+
+}  // namespace vmass

@@ -1,0 +1,51 @@
+// VehicleParams and SuspensionParams: the vehicle constants the estimator assumes.
+//
+// Geometry follows the paper: l (wheelbase), l_f (centre of gravity to front axle),
+// l_r = l - l_f. The rear-right suspension curve generalises eq. (3):
+//   F_rr(z) = c (z - z0) + k2 max(0, z - z_knee)^2          wheel force above the empty state
+// with z the sensor reading, z0 the reading with the empty vehicle (so F_rr(z0) = 0 when
+// z0 < z_knee). With k2 = 0 this is the paper's linear spring.
+//
+// Plain values; thread-safe to share read-only.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace vmass {
+
+struct VehicleParams {
+  double empty_mass_kg = 0.0;                  ///< M_idle
+  double wheelbase_m = 0.0;                    ///< l
+  double cg_to_front_axle_m = 0.0;             ///< l_f
+  double wheel_radius_m = 0.0;                 ///< r_wheel
+  double brake_gain_n_per_pa = 0.0;            ///< K_brake
+  double steering_ratio = 0.0;                 ///< steering-wheel angle / road-wheel angle
+  double cornering_stiffness_front_n_per_rad = 0.0;  ///< C_alpha_f, per axle
+  double cornering_stiffness_rear_n_per_rad = 0.0;   ///< C_alpha_r, per axle
+  double rotating_mass_kg = 0.0;               ///< J / r^2, constant
+  std::vector<double> rotating_mass_by_gear_kg;  ///< optional, index gear - 1
+  double gravity_mps2 = 9.80665;
+
+  double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
+  /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.
+  double rotating_mass_for_gear(int gear, bool gear_valid) const;
+  std::string validate() const;
+};
+
+struct SuspensionParams {
+  double stiffness_n_per_m = 0.0;             ///< c_Brr
+  double empty_deflection_m = 0.0;            ///< z0
+  double progressive_knee_m = std::numeric_limits<double>::infinity();  ///< z_knee
+  double progressive_rate_n_per_m2 = 0.0;     ///< k2
+  double linear_range_kg = std::numeric_limits<double>::infinity();
+  double calibrated_range_kg = std::numeric_limits<double>::infinity();
+
+  /// Rear-right wheel force above the empty state for a sensor reading z, N.
+  double wheel_force_n(double deflection_m) const;
+  bool is_progressive() const { return progressive_rate_n_per_m2 > 0.0; }
+  std::string validate() const;
+};
+
+}  // namespace vmass

@@ -1,0 +1,111 @@
+#include "vmass/core/longitudinal_extractor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "vmass/core/param_check.hpp"
+
+namespace vmass {
+
+std::string LongitudinalParams::validate() const {
+  ParamCheck c("estimator.longitudinal");
+  c.positive("max_abs_accel_y_mps2", max_abs_accel_y_mps2);
+  c.non_negative("min_abs_delta_accel_x_mps2", min_abs_delta_accel_x_mps2);
+  c.non_negative("min_abs_delta_force_n", min_abs_delta_force_n);
+  c.non_negative("min_speed_mps", min_speed_mps);
+  c.positive("weight", weight);
+  return c.message();
+}
+
+LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
+                                             const LongitudinalParams& params,
+                                             const DifferencingParams& differencing)
+    : vehicle_(vehicle),
+      params_(params),
+      differencing_(differencing),
+      steps_(differencing.steps()),
+      tick_us_(from_seconds(1.0 / differencing.tick_rate_hz)),
+      accel_x_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
+      accel_y_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
+      force_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
+      history_(static_cast<std::size_t>(steps_) + 1) {}
+
+void LongitudinalExtractor::reset() {
+  history_.clear();
+  accel_x_filter_.reset();
+  accel_y_filter_.reset();
+  force_filter_.reset();
+}
+
+Extraction LongitudinalExtractor::step(const Sample& s) {
+  Extraction out;
+  if (!params_.enabled) {
+    out.verdict = PairVerdict::kDisabled;
+    return out;
+  }
+  if (!s.has_all(kRequired)) {
+    reset();  // a hole in the data: never difference across it
+    out.verdict = PairVerdict::kInputsInvalid;
+    return out;
+  }
+  const double force_n = s.wheel_torque_nm / vehicle_.wheel_radius_m -
+                         s.brake_pressure_pa * vehicle_.brake_gain_n_per_pa;
+  if (!std::isfinite(force_n) || !std::isfinite(s.accel_x_mps2) ||
+      !std::isfinite(s.accel_y_mps2) || !std::isfinite(s.speed_mps)) {
+    reset();
+    out.verdict = PairVerdict::kNonFinite;
+    return out;
+  }
+  const Record now{s.time_us,
+                   accel_x_filter_.step(s.accel_x_mps2),
+                   accel_y_filter_.step(s.accel_y_mps2),
+                   force_filter_.step(force_n),
+                   s.speed_mps,
+                   s.gear,
+                   s.has(Input::kGear)};
+  history_.push(now);
+  if (history_.size() <= static_cast<std::size_t>(steps_)) {
+    out.verdict = PairVerdict::kWarmingUp;
+    return out;
+  }
+  const Record& then = history_.ago(static_cast<std::size_t>(steps_));
+  const TimeUs expected_us = from_seconds(differencing_.differencing_dt_s);
+  if (std::llabs((now.time_us - then.time_us) - expected_us) > tick_us_ / 2) {
+    out.verdict = PairVerdict::kTimeGap;
+    return out;
+  }
+  if (std::min(std::abs(now.speed_mps), std::abs(then.speed_mps)) < params_.min_speed_mps) {
+    out.verdict = PairVerdict::kSpeed;
+    return out;
+  }
+  if (std::max(std::abs(now.accel_y_mps2), std::abs(then.accel_y_mps2)) >=
+      params_.max_abs_accel_y_mps2) {
+    out.verdict = PairVerdict::kLateralAccel;
+    return out;
+  }
+  if (now.gear_valid && then.gear_valid && now.gear != then.gear) {
+    out.verdict = PairVerdict::kGearChange;
+    return out;
+  }
+  const double delta_accel = now.accel_x_mps2 - then.accel_x_mps2;
+  const double delta_force = now.force_n - then.force_n;
+  if (std::abs(delta_accel) <= params_.min_abs_delta_accel_x_mps2) {
+    out.verdict = PairVerdict::kSmallDeltaAccel;
+    return out;
+  }
+  if (std::abs(delta_force) <= params_.min_abs_delta_force_n) {
+    out.verdict = PairVerdict::kSmallDeltaForce;
+    return out;
+  }
+  const double rotating_mass_kg = vehicle_.rotating_mass_for_gear(now.gear, now.gear_valid);
+  out.verdict = PairVerdict::kAccepted;
+  out.pair.time_us = now.time_us;
+  out.pair.block = Block::kLongitudinal;
+  out.pair.delta_accel_mps2 = delta_accel;
+  out.pair.y_n = delta_force - rotating_mass_kg * delta_accel;
+  out.pair.weight = params_.weight;
+  return out;
+}
+
+}  // namespace vmass

@@ -1,0 +1,140 @@
+#include "vmass/core/pipeline.hpp"
+
+#include <cmath>
+
+#include "vmass/core/param_check.hpp"
+
+namespace vmass {
+
+std::string_view regressor_type_name(RegressorType t) {
+  return t == RegressorType::kRls ? "rls" : "bayes";
+}
+
+std::string EstimatorParams::validate() const {
+  ParamCheck c("estimator");
+  c.nested(differencing.validate());
+  c.nested(static_init.validate());
+  c.nested(longitudinal.validate());
+  c.nested(lateral.validate());
+  c.nested(supervisor.validate());
+  c.nested(rls.validate());
+  c.nested(bayes.validate());
+  c.in_open_range("converged_ci_halfwidth_fraction", converged_ci_halfwidth_fraction, 0.0, 1.0);
+  return c.message();
+}
+
+std::string PipelineParams::validate() const {
+  ParamCheck c("");
+  c.nested(vehicle.validate());
+  c.nested(suspension.validate());
+  c.nested(estimator.validate());
+  return c.message();
+}
+
+Pipeline::Pipeline(const PipelineParams& params)
+    : params_(params),
+      static_init_(params.vehicle, params.suspension, params.estimator.static_init),
+      longitudinal_(params.vehicle, params.estimator.longitudinal, params.estimator.differencing),
+      lateral_(params.vehicle, params.estimator.lateral, params.estimator.differencing),
+      supervisor_(params.estimator.supervisor),
+      rls_(params.estimator.rls),
+      bayes_(params.estimator.bayes),
+      regressor_(params.estimator.type == RegressorType::kRls
+                     ? static_cast<MassRegressor*>(&rls_)
+                     : static_cast<MassRegressor*>(&bayes_)) {}
+
+void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
+  regressor_->reset(prior);
+  supervisor_.on_regressor_reset();
+  longitudinal_.reset();
+  lateral_.reset();
+  has_prior_ = true;
+  prior_reason_ = reason;
+  estimate_.initial_mass_kg = prior.mass_kg;
+}
+
+StepResult Pipeline::step(const Sample& sample) {
+  StepResult result;
+
+  if (const auto static_mass = static_init_.step(sample)) {
+    // The first standstill after driving on the empty-mass prior does not throw away what the
+    // events taught; a load change always restarts (the old estimate is about another vehicle).
+    const bool events_used = has_prior_ && regressor_->state().pairs_used > 0;
+    if (static_mass->load_changed || !events_used) {
+      restart(static_mass->prior, static_mass->load_changed ? StatusReason::kLoadChanged
+                                                            : StatusReason::kStaticInitialised);
+      result.reinitialised = true;
+      result.estimate_changed = true;
+    }
+  }
+  if (!has_prior_ && sample.has(Input::kSpeed) &&
+      std::abs(sample.speed_mps) > params_.estimator.static_init.standstill_speed_mps) {
+    restart(static_init_.no_static_prior(), StatusReason::kNoStaticPrior);
+    result.reinitialised = true;
+    result.estimate_changed = true;
+  }
+
+  if (has_prior_) {
+    // Extractors run on every tick (their filters need continuity); the supervisor decides.
+    const Extraction longitudinal = longitudinal_.step(sample);
+    const Extraction lateral = lateral_.step(sample);
+    result.events[static_cast<int>(Block::kLongitudinal)] = supervisor_.offer(
+        Block::kLongitudinal, longitudinal, *regressor_, &result.estimate_changed);
+    result.events[static_cast<int>(Block::kLateral)] =
+        supervisor_.offer(Block::kLateral, lateral, *regressor_, &result.estimate_changed);
+  }
+
+  const EstimateStatus previous_status = estimate_.status;
+  const StatusReason previous_reason = estimate_.reason;
+  refresh_estimate(sample);
+  if (estimate_.status != previous_status || estimate_.reason != previous_reason) {
+    result.estimate_changed = true;
+  }
+  return result;
+}
+
+void Pipeline::refresh_estimate(const Sample& sample) {
+  estimate_.time_us = sample.time_us;
+  estimate_.blocks[0] = supervisor_.counters(Block::kLongitudinal);
+  estimate_.blocks[1] = supervisor_.counters(Block::kLateral);
+
+  InputMask needed = input_bit(Input::kSpeed) | input_bit(Input::kRearRightDeflection);
+  if (params_.estimator.longitudinal.enabled) needed |= LongitudinalExtractor::kRequired;
+  if (params_.estimator.lateral.enabled) needed |= LateralExtractor::kRequired;
+  estimate_.invalid_inputs = needed & ~sample.valid;
+
+  if (!has_prior_) {
+    estimate_.status = EstimateStatus::kInitialising;
+    estimate_.reason = StatusReason::kWaitingForStandstill;
+    if (estimate_.invalid_inputs != 0) {
+      estimate_.status = EstimateStatus::kDegraded;
+      estimate_.reason = StatusReason::kInputsInvalid;
+    }
+    return;
+  }
+  const RegressorState state = regressor_->state();
+  estimate_.mass_kg = state.mass_kg;
+  estimate_.mu_n = state.mu_n;
+  estimate_.mass_std_kg = state.mass_std_kg;
+  estimate_.ci_low_kg = state.ci_low_kg;
+  estimate_.ci_high_kg = state.ci_high_kg;
+  estimate_.pairs_used = state.pairs_used;
+
+  if (estimate_.invalid_inputs != 0) {
+    estimate_.status = EstimateStatus::kDegraded;
+    estimate_.reason = StatusReason::kInputsInvalid;
+  } else if (state.pairs_used == 0) {
+    estimate_.status = prior_reason_ == StatusReason::kNoStaticPrior
+                           ? EstimateStatus::kInitialising
+                           : EstimateStatus::kStaticOnly;
+    estimate_.reason = prior_reason_;
+  } else {
+    const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);
+    const bool narrow =
+        half_width < params_.estimator.converged_ci_halfwidth_fraction * std::abs(state.mass_kg);
+    estimate_.status = narrow ? EstimateStatus::kConverged : EstimateStatus::kConverging;
+    estimate_.reason = narrow ? StatusReason::kIntervalNarrow : StatusReason::kRefining;
+  }
+}
+
+}  // namespace vmass

@@ -1,0 +1,54 @@
+#include "vmass/core/vehicle_params.hpp"
+
+#include <cmath>
+
+#include "vmass/core/param_check.hpp"
+
+namespace vmass {
+
+double VehicleParams::rotating_mass_for_gear(int gear, bool gear_valid) const {
+  if (gear_valid && gear >= 1 && static_cast<std::size_t>(gear) <= rotating_mass_by_gear_kg.size()) {
+    return rotating_mass_by_gear_kg[static_cast<std::size_t>(gear) - 1];
+  }
+  return rotating_mass_kg;
+}
+
+std::string VehicleParams::validate() const {
+  ParamCheck c("vehicle");
+  c.positive("empty_mass_kg", empty_mass_kg);
+  c.positive("wheelbase_m", wheelbase_m);
+  c.in_open_range("cg_to_front_axle_m", cg_to_front_axle_m, 0.0, wheelbase_m);
+  c.positive("wheel_radius_m", wheel_radius_m);
+  c.non_negative("brake_gain_n_per_pa", brake_gain_n_per_pa);
+  c.positive("steering_ratio", steering_ratio);
+  c.positive("cornering_stiffness_front_n_per_rad", cornering_stiffness_front_n_per_rad);
+  c.positive("cornering_stiffness_rear_n_per_rad", cornering_stiffness_rear_n_per_rad);
+  c.non_negative("rotating_mass_kg", rotating_mass_kg);
+  for (std::size_t i = 0; i < rotating_mass_by_gear_kg.size(); ++i) {
+    c.non_negative("rotating_mass_by_gear_kg[" + std::to_string(i) + "]",
+                   rotating_mass_by_gear_kg[i]);
+  }
+  c.positive("gravity_mps2", gravity_mps2);
+  return c.message();
+}
+
+double SuspensionParams::wheel_force_n(double deflection_m) const {
+  const double linear = stiffness_n_per_m * (deflection_m - empty_deflection_m);
+  if (!is_progressive() || !(deflection_m > progressive_knee_m)) return linear;
+  const double beyond = deflection_m - progressive_knee_m;
+  const double empty_beyond = std::max(0.0, empty_deflection_m - progressive_knee_m);
+  return linear + progressive_rate_n_per_m2 * (beyond * beyond - empty_beyond * empty_beyond);
+}
+
+std::string SuspensionParams::validate() const {
+  ParamCheck c("suspension");
+  c.positive("stiffness_n_per_m", stiffness_n_per_m);
+  c.finite("empty_deflection_m", empty_deflection_m);
+  c.non_negative("progressive_rate_n_per_m2", progressive_rate_n_per_m2);
+  if (is_progressive()) c.finite("progressive_knee_m", progressive_knee_m);
+  c.positive_or_inf("linear_range_kg", linear_range_kg);
+  c.positive_or_inf("calibrated_range_kg", calibrated_range_kg);
+  return c.message();
+}
+
+}  // namespace vmass
