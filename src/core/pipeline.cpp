@@ -113,6 +113,7 @@ void Pipeline::refresh_estimate(const Sample& sample) {
     return;
   }
   const RegressorState state = regressor_->state();
+  estimate_.mass_known = true;
   estimate_.mass_kg = state.mass_kg;
   estimate_.mu_n = state.mu_n;
   estimate_.mass_std_kg = state.mass_std_kg;

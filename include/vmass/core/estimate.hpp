@@ -57,7 +57,9 @@ struct Estimate {
   InputMask invalid_inputs = 0;  ///< inputs needed but invalid at this tick
   std::array<BlockCounters, kBlockCount> blocks{};
 
-  bool has_mass() const { return status != EstimateStatus::kInitialising; }
+  bool mass_known = false;  ///< false until a prior exists (static or empty-mass)
+
+  bool has_mass() const { return mass_known; }
   /// Human-readable reason, e.g. "inputs invalid: speed, yaw_rate" (allocates; not for hot paths).
   std::string describe_reason() const;
 };
