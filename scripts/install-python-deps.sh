@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Makes the Python virtual environment the test oracles and benchmarks use (build/pyenv) and
+# installs their packages into it: cantools (the independent DBC decoder the CAN layer is checked
+# against). Idempotent: an existing venv is reused, and pip is not run when every package is
+# already importable. Needs /usr/bin/python3 with the venv module (Debian: python3-venv).
+#
+#   scripts/install-python-deps.sh [VENV_DIR]     (default: <repo>/build/pyenv)
+set -euo pipefail
+
+repo=$(cd "$(dirname "$0")/.." && pwd)
+venv=${1:-$repo/build/pyenv}
+python=/usr/bin/python3
+packages=(cantools)
+modules=(cantools)
+
+if [ ! -x "$venv/bin/python" ]; then
+  echo "install-python-deps: creating $venv"
+  mkdir -p "$(dirname "$venv")"
+  "$python" -m venv "$venv"
+fi
+
+missing=0
+for m in "${modules[@]}"; do
+  "$venv/bin/python" -c "import $m" 2>/dev/null || missing=1
+done
+if [ "$missing" -eq 0 ]; then
+  echo "install-python-deps: ${packages[*]} present in $venv"
+  exit 0
+fi
+
+echo "install-python-deps: installing ${packages[*]} into $venv"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check "${packages[@]}"
+"$venv/bin/python" -c "import cantools; print('install-python-deps: cantools', cantools.__version__)"
