@@ -1,0 +1,270 @@
+// candump -l log reader and writer (see include/vmass/can/candump.hpp).
+#include "vmass/can/candump.hpp"
+
+#include <charconv>
+#include <istream>
+#include <ostream>
+
+namespace vmass::can {
+namespace {
+
+constexpr std::uint32_t kErrFlag = 0x20000000u;  // CAN_ERR_FLAG
+constexpr std::uint32_t kErrMask = 0x1FFFFFFFu;  // CAN_ERR_MASK
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
+}
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+CandumpLine corrupt(std::string* error, const char* why) {
+  if (error) *error = why;
+  return CandumpLine::kCorrupt;
+}
+
+}  // namespace
+
+CandumpLine parse_candump_line(std::string_view line, CandumpRecord* record, std::string* error) {
+  while (!line.empty() && (line.back() == '\r' || line.back() == '\n' || is_blank(line.back()))) {
+    line.remove_suffix(1);
+  }
+  std::size_t p = 0;
+  while (p < line.size() && is_blank(line[p])) ++p;
+  if (p == line.size() || line[p] == '#' || line[p] == ';') return CandumpLine::kComment;
+
+  // (SECONDS.FRACTION)
+  if (line[p] != '(') return corrupt(error, "expected '(' opening the timestamp");
+  ++p;
+  const std::size_t sec_begin = p;
+  while (p < line.size() && line[p] >= '0' && line[p] <= '9') ++p;
+  const std::size_t sec_digits = p - sec_begin;
+  if (sec_digits == 0 || sec_digits > 12) return corrupt(error, "expected seconds in the timestamp");
+  if (p >= line.size() || line[p] != '.') return corrupt(error, "expected '.' in the timestamp");
+  ++p;
+  const std::size_t frac_begin = p;
+  while (p < line.size() && line[p] >= '0' && line[p] <= '9') ++p;
+  const std::size_t frac_digits = p - frac_begin;
+  if (frac_digits != 6 && frac_digits != 9) {
+    return corrupt(error, "timestamp needs 6 or 9 fractional digits");
+  }
+  if (p >= line.size() || line[p] != ')') return corrupt(error, "expected ')' after the timestamp");
+  ++p;
+  std::int64_t sec = 0, frac = 0;
+  std::from_chars(line.data() + sec_begin, line.data() + sec_begin + sec_digits, sec);
+  std::from_chars(line.data() + frac_begin, line.data() + frac_begin + frac_digits, frac);
+  if (frac_digits == 9) frac /= 1000;
+
+  // INTERFACE
+  if (p >= line.size() || !is_blank(line[p])) return corrupt(error, "expected a blank after ')'");
+  while (p < line.size() && is_blank(line[p])) ++p;
+  const std::size_t if_begin = p;
+  while (p < line.size() && !is_blank(line[p])) ++p;
+  if (p == if_begin) return corrupt(error, "expected an interface name");
+  const std::string_view iface = line.substr(if_begin, p - if_begin);
+  while (p < line.size() && is_blank(line[p])) ++p;
+
+  // FRAME, then an optional direction.
+  std::size_t end = p;
+  while (end < line.size() && !is_blank(line[end])) ++end;
+  const std::string_view tok = line.substr(p, end - p);
+  std::size_t q = end;
+  while (q < line.size() && is_blank(line[q])) ++q;
+  char direction = '\0';
+  if (q < line.size()) {
+    if (q + 1 == line.size() && (line[q] == 'R' || line[q] == 'T')) {
+      direction = line[q];
+    } else {
+      return corrupt(error, "unexpected text after the frame");
+    }
+  }
+  if (tok.empty()) return corrupt(error, "expected a frame after the interface");
+
+  CanFrame f;
+  f.time_us = sec * 1000000 + frac;
+  const std::size_t hash = tok.find('#');
+  if (hash == std::string_view::npos) return corrupt(error, "expected '#' after the CAN id");
+  if (hash != 3 && hash != 8) return corrupt(error, "CAN id must have 3 or 8 hex digits");
+  std::uint32_t id = 0;
+  for (std::size_t i = 0; i < hash; ++i) {
+    const int h = hex_value(tok[i]);
+    if (h < 0) return corrupt(error, "CAN id is not hexadecimal");
+    id = (id << 4) | static_cast<std::uint32_t>(h);
+  }
+  if (hash == 3) {
+    if (id > kSffMask) return corrupt(error, "11-bit CAN id above 7FF");
+    f.id = id;
+  } else if (id & kErrFlag) {
+    if (id & ~(kErrFlag | kErrMask)) return corrupt(error, "error frame id has extra flag bits");
+    f.id = id & kErrMask;
+    f.flags = kError;
+  } else {
+    if (id > kEffMask) return corrupt(error, "29-bit CAN id above 1FFFFFFF");
+    f.id = id;
+    f.flags = kExtended;
+  }
+
+  std::size_t d = hash + 1;
+  int max_len = kClassicMaxLen;
+  if (d < tok.size() && tok[d] == '#') {  // CAN FD
+    if (f.flags & kError) return corrupt(error, "error frames are not CAN FD");
+    ++d;
+    if (d >= tok.size()) return corrupt(error, "expected the CAN FD flags digit after '##'");
+    const int fl = hex_value(tok[d]);
+    if (fl < 0) return corrupt(error, "CAN FD flags digit is not hexadecimal");
+    f.flags = static_cast<std::uint8_t>(f.flags | kFd | ((fl & 1) ? kFdBrs : 0) |
+                                        ((fl & 2) ? kFdEsi : 0));
+    ++d;
+    max_len = kFdMaxLen;
+  } else if (d < tok.size() && tok[d] == 'R') {  // remote request
+    if (f.flags & kError) return corrupt(error, "error frames have no remote form");
+    ++d;
+    f.flags = static_cast<std::uint8_t>(f.flags | kRemote);
+    if (d < tok.size()) {
+      const int l = hex_value(tok[d]);
+      if (l < 0 || l > kClassicMaxLen || d + 1 != tok.size()) {
+        return corrupt(error, "remote frame length must be one digit 0..8");
+      }
+      f.len = static_cast<std::uint8_t>(l);
+    }
+    if (record) {
+      record->frame = f;
+      record->interface = iface;
+      record->direction = direction;
+    }
+    return CandumpLine::kFrame;
+  }
+  int len = 0;
+  while (d < tok.size()) {
+    if (tok[d] == '.') {
+      ++d;
+      continue;
+    }
+    if (tok[d] == '_' && max_len == kClassicMaxLen && len == kClassicMaxLen) {
+      // raw DLC 9..F of an 8-byte classic frame (len8_dlc)
+      if (d + 2 != tok.size() || hex_value(tok[d + 1]) < 9) {
+        return corrupt(error, "expected '_' followed by a DLC digit 9..F");
+      }
+      break;
+    }
+    if (d + 1 >= tok.size()) return corrupt(error, "odd number of hex digits in the data");
+    const int hi = hex_value(tok[d]);
+    const int lo = hex_value(tok[d + 1]);
+    if (hi < 0 || lo < 0) return corrupt(error, "data is not hexadecimal");
+    if (len >= max_len) {
+      return corrupt(error, max_len == kFdMaxLen ? "more than 64 data bytes"
+                                                 : "more than 8 data bytes in a classic frame");
+    }
+    f.data[len++] = static_cast<std::uint8_t>(hi * 16 + lo);
+    d += 2;
+  }
+  if ((f.flags & kFd) && !is_valid_fd_length(len)) {
+    return corrupt(error, "CAN FD length is not one of 0..8, 12, 16, 20, 24, 32, 48, 64");
+  }
+  f.len = static_cast<std::uint8_t>(len);
+  if (record) {
+    record->frame = f;
+    record->interface = iface;
+    record->direction = direction;
+  }
+  return CandumpLine::kFrame;
+}
+
+std::size_t format_candump_line(const CanFrame& f, std::string_view interface, char* buf,
+                                std::size_t capacity) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const std::size_t need = 26 + interface.size() + 12 + 2 * kFdMaxLen + 2;
+  if (capacity < need) return 0;
+  std::int64_t t = f.time_us < 0 ? 0 : f.time_us;
+  const std::int64_t sec = t / 1000000;
+  const std::int64_t usec = t % 1000000;
+  char* p = buf;
+  // "(%010ld.%06ld) "
+  *p++ = '(';
+  char digits[24];
+  const auto r = std::to_chars(digits, digits + sizeof digits, sec);
+  const auto n = static_cast<std::size_t>(r.ptr - digits);
+  for (std::size_t i = n; i < 10; ++i) *p++ = '0';
+  for (std::size_t i = 0; i < n; ++i) *p++ = digits[i];
+  *p++ = '.';
+  std::int64_t div = 100000;
+  for (int i = 0; i < 6; ++i, div /= 10) *p++ = static_cast<char>('0' + (usec / div) % 10);
+  *p++ = ')';
+  *p++ = ' ';
+  for (char c : interface) *p++ = c;
+  *p++ = ' ';
+  auto put_id = [&](std::uint32_t id, int width) {
+    for (int i = width - 1; i >= 0; --i) *p++ = kHex[(id >> (4 * i)) & 0xF];
+  };
+  if (f.error()) {
+    put_id((f.id & kErrMask) | kErrFlag, 8);
+  } else if (f.extended()) {
+    put_id(f.id & kEffMask, 8);
+  } else {
+    put_id(f.id & kSffMask, 3);
+  }
+  *p++ = '#';
+  const int max_len = f.fd() ? kFdMaxLen : kClassicMaxLen;
+  const int len = f.len > max_len ? max_len : f.len;
+  if (!f.fd() && f.remote()) {
+    *p++ = 'R';
+    if (f.len > 0 && f.len <= kClassicMaxLen) *p++ = kHex[f.len];
+  } else {
+    if (f.fd()) {
+      *p++ = '#';
+      *p++ = kHex[((f.flags & kFdBrs) ? 1 : 0) | ((f.flags & kFdEsi) ? 2 : 0)];
+    }
+    for (int i = 0; i < len; ++i) {
+      *p++ = kHex[f.data[i] >> 4];
+      *p++ = kHex[f.data[i] & 0xF];
+    }
+  }
+  *p++ = '\n';
+  return static_cast<std::size_t>(p - buf);
+}
+
+std::string format_candump_line(const CanFrame& frame, std::string_view interface) {
+  std::string s(26 + interface.size() + 12 + 2 * kFdMaxLen + 2, '\0');
+  s.resize(format_candump_line(frame, interface, s.data(), s.size()));
+  return s;
+}
+
+CandumpReader::CandumpReader(std::istream& in, std::string source)
+    : in_(in), source_(std::move(source)) {}
+
+bool CandumpReader::next(CandumpRecord* record) {
+  while (std::getline(in_, line_)) {
+    ++line_no_;
+    ++stats_.lines;
+    switch (parse_candump_line(line_, record, &why_)) {
+      case CandumpLine::kFrame:
+        ++stats_.frames;
+        if (record->frame.fd()) ++stats_.fd_frames;
+        if (record->frame.remote()) ++stats_.remote_frames;
+        if (record->frame.error()) ++stats_.error_frames;
+        return true;
+      case CandumpLine::kComment:
+        ++stats_.comments;
+        break;
+      case CandumpLine::kCorrupt: {
+        ++stats_.corrupt;
+        CandumpError e{line_no_, source_ + ":" + std::to_string(line_no_) + ": " + why_};
+        if (callback_) callback_(e);
+        if (errors_.size() < kMaxKeptErrors) errors_.push_back(std::move(e));
+        break;
+      }
+    }
+  }
+  return false;
+}
+
+void CandumpWriter::write(const CanFrame& frame, std::string_view interface) {
+  char buf[512];
+  if (interface.size() > 256) interface = interface.substr(0, 256);
+  const std::size_t n = format_candump_line(frame, interface, buf, sizeof buf);
+  out_.write(buf, static_cast<std::streamsize>(n));
+}
+
+}  // namespace vmass::can
