@@ -1,0 +1,298 @@
+// vmass-can: the CAN layer from the command line.
+//
+//   vmass-can check  --dbc FILE [--strict]            validate a DBC, list messages and signals
+//   vmass-can decode --dbc FILE [LOG] [--json]        decode a candump -l log (stdin without LOG)
+//   vmass-can dump   --can IFACE [--count N] [--idle-timeout S] [--dbc FILE]
+//                                                     print frames from SocketCAN as candump -l
+//
+// Exit status: 0 on success, 1 on errors (invalid DBC, unreadable input, SocketCAN failure),
+// 2 for dump when fewer than --count frames arrived before the idle timeout.
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "vmass/can/candump.hpp"
+#include "vmass/can/dbc.hpp"
+#include "vmass/can/decoder.hpp"
+#include "vmass/can/socketcan.hpp"
+
+namespace {
+
+using namespace vmass::can;
+
+void print_diagnostics(const DbcParseResult& r) {
+  for (const DbcDiagnostic& d : r.diagnostics) std::cerr << d.to_string() << "\n";
+}
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", u);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+/// Shortest text that reads back as the same double; JSON null for NaN and infinities.
+void append_number(std::string& out, double v) {
+  if (!std::isfinite(v)) {
+    out += "null";
+    return;
+  }
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+void append_time(std::string& out, std::int64_t time_us) {
+  char buf[40];
+  const std::int64_t sec = time_us / 1000000;
+  const std::int64_t usec = time_us % 1000000;
+  std::snprintf(buf, sizeof buf, "%lld.%06lld", static_cast<long long>(sec),
+                static_cast<long long>(usec < 0 ? -usec : usec));
+  out += buf;
+}
+
+std::optional<Decoder> load_decoder(const std::string& path, bool strict, bool quiet_warnings) {
+  DbcParseOptions opt;
+  opt.strict = strict;
+  DbcParseResult r = load_dbc_file(path, opt);
+  for (const DbcDiagnostic& d : r.diagnostics) {
+    if (d.severity == Severity::kError || !quiet_warnings) std::cerr << d.to_string() << "\n";
+  }
+  if (r.diagnostics.size() == 1 && r.diagnostics[0].line == 0) return std::nullopt;  // unreadable
+  if (!r.ok()) {
+    if (strict) return std::nullopt;
+    std::cerr << path << ": " << r.error_count()
+              << " error(s); decoding with what could be loaded\n";
+  }
+  std::string error;
+  auto d = Decoder::compile(std::move(r.database), &error);
+  if (!d) std::cerr << path << ": " << error << "\n";
+  return d;
+}
+
+int run_check(const std::string& dbc, bool strict) {
+  DbcParseOptions opt;
+  opt.strict = strict;
+  DbcParseResult r = load_dbc_file(dbc, opt);
+  print_diagnostics(r);
+  const Database& db = r.database;
+  std::size_t signal_count = 0;
+  for (const Message& m : db.messages) {
+    signal_count += m.signals.size();
+    std::printf("%s 0x%X%s %s: %d bytes%s", m.extended ? "EXT" : "STD", m.id, "", m.name.c_str(),
+                m.length, m.fd ? " FD" : "");
+    if (m.cycle_time_ms > 0) std::printf(", every %d ms", m.cycle_time_ms);
+    std::printf(", %zu signals\n", m.signals.size());
+    for (const Signal& s : m.signals) {
+      std::printf("  %s %d|%d@%c%c (%.17g,%.17g)", s.name.c_str(), s.start_bit, s.length,
+                  s.byte_order == ByteOrder::kIntel ? '1' : '0', s.is_signed ? '-' : '+',
+                  s.factor, s.offset);
+      if (s.has_range) std::printf(" [%.17g|%.17g]", s.minimum, s.maximum);
+      if (!s.unit.empty()) std::printf(" \"%s\"", s.unit.c_str());
+      if (s.value_type == ValueType::kFloat32) std::printf(" float32");
+      if (s.value_type == ValueType::kFloat64) std::printf(" float64");
+      if (s.is_multiplexor) std::printf(" multiplexor");
+      if (s.mux_parent >= 0) {
+        std::printf(" when %s in", m.signals[static_cast<std::size_t>(s.mux_parent)].name.c_str());
+        for (const MuxRange& rg : s.mux_ranges) {
+          if (rg.lo == rg.hi) {
+            std::printf(" %llu", static_cast<unsigned long long>(rg.lo));
+          } else {
+            std::printf(" %llu-%llu", static_cast<unsigned long long>(rg.lo),
+                        static_cast<unsigned long long>(rg.hi));
+          }
+        }
+      }
+      std::printf("\n");
+    }
+  }
+  std::string error;
+  const bool compiles = Decoder::compile(db, &error).has_value();
+  if (!compiles) std::cerr << dbc << ": " << error << "\n";
+  std::printf("%s: %zu messages, %zu signals, %d warning(s), %d error(s)%s\n", dbc.c_str(),
+              db.messages.size(), signal_count, r.warning_count(), r.error_count(),
+              strict ? " (strict)" : "");
+  return r.ok() && compiles ? 0 : 1;
+}
+
+int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
+  auto decoder = load_decoder(dbc, strict, json);
+  if (!decoder) return 1;
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (!log.empty() && log != "-") {
+    file.open(log);
+    if (!file) {
+      std::cerr << log << ": cannot open\n";
+      return 1;
+    }
+    in = &file;
+  }
+  CandumpReader reader(*in, log.empty() ? "stdin" : log);
+  reader.on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
+  const Database& db = decoder->database();
+  DecodeStats stats;
+  CandumpRecord rec;
+  std::string out;
+  out.reserve(4096);
+  while (reader.next(&rec)) {
+    int m = -1;
+    out.clear();
+    const DecodeStatus st = decoder->classify(rec.frame, &m);
+    stats.count(st);
+    if (st != DecodeStatus::kOk) {
+      if (st == DecodeStatus::kTooShort) {
+        std::cerr << reader.source() << ":" << reader.line_number() << ": frame "
+                  << db.messages[static_cast<std::size_t>(m)].name << " has "
+                  << int(rec.frame.len) << " bytes, the DBC says "
+                  << db.messages[static_cast<std::size_t>(m)].length << ": rejected\n";
+      }
+      if (!json) std::cout << format_candump_line(rec.frame, rec.interface);
+      continue;
+    }
+    const Message& msg = db.messages[static_cast<std::size_t>(m)];
+    if (json) {
+      out += "{\"time_s\": ";
+      append_time(out, rec.frame.time_us);
+      out += ", \"id\": ";
+      out += std::to_string(rec.frame.id);
+      out += ", \"message\": \"";
+      out += json_escape(msg.name);
+      out += "\", \"signals\": {";
+      bool first = true;
+      decoder->decode(rec.frame, [&](int i, double v) {
+        if (!first) out += ", ";
+        first = false;
+        out += '"';
+        out += json_escape(msg.signals[static_cast<std::size_t>(i)].name);
+        out += "\": ";
+        append_number(out, v);
+      });
+      out += "}}\n";
+    } else {
+      std::string line = format_candump_line(rec.frame, rec.interface);
+      line.pop_back();
+      out += line + " :: " + msg.name + "(";
+      bool first = true;
+      decoder->decode(rec.frame, [&](int i, double v) {
+        const Signal& s = msg.signals[static_cast<std::size_t>(i)];
+        if (!first) out += ", ";
+        first = false;
+        out += s.name + ": ";
+        const double raw = std::round((v - s.offset) / s.factor);
+        const ValueDescription* choice = nullptr;
+        for (const ValueDescription& vd : s.values) {
+          if (static_cast<double>(vd.value) == raw) choice = &vd;
+        }
+        if (choice != nullptr && s.value_type == ValueType::kInteger) {
+          out += "'" + choice->text + "'";
+        } else {
+          append_number(out, v);
+          if (!s.unit.empty()) out += " " + s.unit;
+        }
+      });
+      out += ")\n";
+    }
+    std::cout << out;
+  }
+  std::cout.flush();
+  const CandumpStats& cs = reader.stats();
+  std::cerr << "vmass-can decode: " << cs.frames << " frames, " << stats.decoded << " decoded, "
+            << stats.unknown_id << " unknown id, " << stats.too_short << " too short, "
+            << stats.remote << " remote, " << stats.error_frames << " error frames, "
+            << cs.corrupt << " corrupt lines\n";
+  return 0;
+}
+
+int run_dump(const std::string& iface, long count, double idle_timeout_s, const std::string& dbc) {
+  SocketCanOptions opt;
+  opt.interface = iface;
+  opt.reopen_initial_ms = 50;
+  opt.reopen_max_ms = 1000;
+  if (!dbc.empty()) {
+    DbcParseResult r = load_dbc_file(dbc);
+    print_diagnostics(r);
+    opt.filters = filters_for(r.database);
+  }
+  std::string error;
+  auto reader = SocketCanReader::open(opt, &error);
+  if (!reader) {
+    std::cerr << "vmass-can dump: " << error << "\n";
+    return 1;
+  }
+  std::cerr << "vmass-can dump: listening on " << iface << "\n";
+  long got = 0;
+  CanFrame f;
+  const int step_ms = 100;
+  double idle_s = 0.0;
+  while (count <= 0 || got < count) {
+    const ReadStatus st = reader->read(&f, step_ms);
+    if (st == ReadStatus::kFrame) {
+      idle_s = 0.0;
+      ++got;
+      std::cout << format_candump_line(f, iface) << std::flush;
+      continue;
+    }
+    if (st != ReadStatus::kTimeout && st != ReadStatus::kReopening) {
+      std::cerr << "vmass-can dump: " << to_string(st) << ": " << reader->last_error() << "\n";
+    }
+    if (st == ReadStatus::kClosed) break;
+    idle_s += st == ReadStatus::kInterfaceDown || st == ReadStatus::kInterfaceGone ? 0.0 : 0.1;
+    if (idle_timeout_s > 0 && idle_s >= idle_timeout_s) break;
+  }
+  const SocketCanStats& s = reader->stats();
+  std::cerr << "vmass-can dump: " << got << " frames (" << s.fd_frames << " FD, "
+            << s.error_frames << " error), " << s.dropped << " dropped, " << s.interface_down
+            << " interface down, " << s.interface_gone << " interface gone, " << s.reopens
+            << " re-opened, " << s.no_kernel_timestamp << " without kernel timestamp\n";
+  return count > 0 && got < count ? 2 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vmass-can: DBC checking, candump log decoding and SocketCAN dumping"};
+  app.require_subcommand(1);
+
+  std::string dbc, log, iface;
+  bool strict = false, json = false;
+  long count = 0;
+  double idle_timeout_s = 0.0;
+
+  CLI::App* check = app.add_subcommand("check", "validate a DBC file, list messages and signals");
+  check->add_option("--dbc", dbc, "DBC file")->required();
+  check->add_flag("--strict", strict, "treat deviations from the format as errors");
+
+  CLI::App* decode = app.add_subcommand("decode", "decode a candump -l log with a DBC file");
+  decode->add_option("--dbc", dbc, "DBC file")->required();
+  decode->add_option("log", log, "candump -l log (default: standard input)");
+  decode->add_flag("--json", json, "one JSON object per decoded frame");
+  decode->add_flag("--strict", strict, "refuse a DBC with deviations");
+
+  CLI::App* dump = app.add_subcommand("dump", "print frames from a SocketCAN interface");
+  dump->add_option("--can", iface, "interface, e.g. can0")->required();
+  dump->add_option("--count", count, "stop after this many frames (0: never)");
+  dump->add_option("--idle-timeout", idle_timeout_s, "stop after this long without frames, s");
+  dump->add_option("--dbc", dbc, "receive only this DBC's ids");
+
+  CLI11_PARSE(app, argc, argv);
+  if (check->parsed()) return run_check(dbc, strict);
+  if (decode->parsed()) return run_decode(dbc, log, json, strict);
+  return run_dump(iface, count, idle_timeout_s, dbc);
+}
