@@ -1,0 +1,76 @@
+// Config writer: the config.yaml that goes with a simulated drive, in the schema of
+// docs/formats.md. It holds what a careful vehicle team would know about the simulated car:
+//
+// exact (the paper assumes them known):
+//   vehicle.empty_mass_kg, wheelbase_m, wheel_radius_m, brake_gain_n_per_pa, steering_ratio,
+//   gravity_mps2; cg_to_front_axle_m = l_f of the car as loaded at the start of the scenario;
+//   cornering_stiffness_{front,rear}_n_per_rad = small-slip slope of the simulated tyres summed
+//   over the axle at the static wheel loads at the start (see tyre.hpp); rotating_mass_kg =
+//   J_w / r^2 (clutch open) and rotating_mass_by_gear_kg = (J_w + eta J_pm (i_g i_f)^2) / r^2;
+//   suspension.empty_deflection_m (sensor reading of the empty car standing level) and
+//   progressive_knee_m (the bump stop, in sensor coordinates).
+// with a calibration error (CalibrationErrors, documented in the file's header comment):
+//   suspension.stiffness_n_per_m and progressive_rate_n_per_m2 are 3 % low; the sensor has also
+//   drifted +0.2 mm since calibration (SensorSpec). linear_range_kg follows from the written
+//   curve (added load at the centre of gravity that reaches the knee); calibrated_range_kg is the
+//   ballast range of the calibration (800 kg).
+// estimator: tick_rate_hz (the scenario's), differencing_dt_s 0.02 and the gates of the paper's
+//   Tables II and III; bayes.batch_size 100 (the paper's simulation value); other keys default.
+// No `can:` section (the CSV files need none) and no `lcm:` section (defaults).
+//
+// Stateless functions; thread-safe on distinct streams.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "vmass/sim/simulator.hpp"
+
+namespace vmass::sim {
+
+struct CalibrationErrors {
+  double suspension_stiffness_scale = 0.97;  ///< written c and k2 = true * this
+  double calibrated_range_kg = 800.0;        ///< ballast range of the calibration (8 x 100 kg)
+};
+
+/// The values written, by formats.md key.
+struct ConfigValues {
+  // vehicle
+  double empty_mass_kg = 0.0;
+  double wheelbase_m = 0.0;
+  double cg_to_front_axle_m = 0.0;
+  double wheel_radius_m = 0.0;
+  double brake_gain_n_per_pa = 0.0;
+  double steering_ratio = 0.0;
+  double cornering_stiffness_front_n_per_rad = 0.0;
+  double cornering_stiffness_rear_n_per_rad = 0.0;
+  double rotating_mass_kg = 0.0;
+  std::vector<double> rotating_mass_by_gear_kg;
+  double gravity_mps2 = 0.0;
+  // suspension
+  double stiffness_n_per_m = 0.0;
+  double empty_deflection_m = 0.0;
+  double progressive_knee_m = 0.0;
+  double progressive_rate_n_per_m2 = 0.0;
+  double linear_range_kg = 0.0;
+  double calibrated_range_kg = 0.0;
+  // estimator
+  double tick_rate_hz = 100.0;
+  double differencing_dt_s = 0.02;
+  int bayes_batch_size = 100;
+};
+
+/// What the team's config says about a car with true parameters `vehicle`, loaded as `loaded`.
+ConfigValues make_config_values(const VehicleParams& vehicle, const MassProperties& loaded,
+                                double tick_rate_hz, const CalibrationErrors& errors = {});
+
+/// The YAML text; header_comment lines (without '#') go on top.
+void write_config_yaml(std::ostream& os, const ConfigValues& values,
+                       const std::vector<std::string>& header_comment);
+
+/// Writes DIR/config.yaml for a simulation result. "" or a message naming the file.
+std::string write_config_file(const SimulationResult& result, const std::string& dir,
+                              const CalibrationErrors& errors = {});
+
+}  // namespace vmass::sim

@@ -1,0 +1,65 @@
+#include "vmass/sim/vehicle_params.hpp"
+
+#include <cmath>
+
+namespace vmass::sim {
+
+std::string VehicleParams::validate() const {
+  if (auto m = empty.validate("vehicle.empty."); !m.empty()) return m;
+  if (!(wheelbase_m > 0.5)) return "vehicle.wheelbase_m must be > 0.5";
+  if (!(empty.cg_x_m > 0.0 && empty.cg_x_m < wheelbase_m)) {
+    return "vehicle.empty.cg_x_m must be in (0, wheelbase_m)";
+  }
+  if (!(track_m > 0.5)) return "vehicle.track_m must be > 0.5";
+  if (!(wheel_radius_m > 0.1)) return "vehicle.wheel_radius_m must be > 0.1";
+  if (!(steering_ratio > 1.0)) return "vehicle.steering_ratio must be > 1";
+  if (!(brake_gain_n_per_pa > 0.0)) return "vehicle.brake_gain_n_per_pa must be > 0";
+  if (!(brake_front_share >= 0.0 && brake_front_share <= 1.0)) {
+    return "vehicle.brake_front_share must be in [0, 1]";
+  }
+  if (!(drag_area_m2 >= 0.0)) return "vehicle.drag_area_m2 must be >= 0";
+  if (!(air_density_kg_per_m3 >= 0.0)) return "vehicle.air_density_kg_per_m3 must be >= 0";
+  if (!(rolling_resistance_coeff >= 0.0 && rolling_resistance_coeff < 0.1)) {
+    return "vehicle.rolling_resistance_coeff must be in [0, 0.1)";
+  }
+  if (!(gravity_mps2 > 9.7 && gravity_mps2 < 9.9))
+    return "vehicle.gravity_mps2 must be in (9.7, 9.9)";
+  if (!(roll_stiffness_front_share >= 0.0 && roll_stiffness_front_share <= 1.0)) {
+    return "vehicle.roll_stiffness_front_share must be in [0, 1]";
+  }
+  if (!(load_transfer_time_constant_s > 0.0)) {
+    return "vehicle.load_transfer_time_constant_s must be > 0";
+  }
+  if (auto m = front_tyre.validate("vehicle.front_tyre."); !m.empty()) return m;
+  if (auto m = rear_tyre.validate("vehicle.rear_tyre."); !m.empty()) return m;
+  if (auto m = powertrain.validate("vehicle.powertrain."); !m.empty()) return m;
+  if (auto m = rear_right_suspension.validate("vehicle.rear_right_suspension."); !m.empty())
+    return m;
+  return "";
+}
+
+StaticLoads static_loads(const VehicleParams& v, const MassProperties& m) {
+  const double w = m.mass_kg * v.gravity_mps2;
+  const double l = v.wheelbase_m;
+  StaticLoads s;
+  s.front_axle_n = w * (l - m.cg_x_m) / l;
+  s.rear_axle_n = w * m.cg_x_m / l;
+  const double right = 0.5 - m.cg_y_m / v.track_m;
+  s.front_right_n = s.front_axle_n * right;
+  s.front_left_n = s.front_axle_n - s.front_right_n;
+  s.rear_right_n = s.rear_axle_n * right;
+  s.rear_left_n = s.rear_axle_n - s.rear_right_n;
+  return s;
+}
+
+AxleCorneringStiffness static_cornering_stiffness(const VehicleParams& v, const MassProperties& m) {
+  const StaticLoads s = static_loads(v, m);
+  AxleCorneringStiffness c;
+  c.front_n_per_rad = wheel_cornering_stiffness(v.front_tyre, s.front_left_n) +
+                      wheel_cornering_stiffness(v.front_tyre, s.front_right_n);
+  c.rear_n_per_rad = wheel_cornering_stiffness(v.rear_tyre, s.rear_left_n) +
+                     wheel_cornering_stiffness(v.rear_tyre, s.rear_right_n);
+  return c;
+}
+
+}  // namespace vmass::sim
