@@ -69,8 +69,8 @@ struct BayesParams {
 struct NigPosterior {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   Eigen::Matrix2d scaled_covariance = Eigen::Matrix2d::Identity();  ///< V
-  double shape = 1.0;   ///< a
-  double scale = 1.0;   ///< b
+  double shape = 1.0;                                               ///< a
+  double scale = 1.0;                                               ///< b
 };
 
 class BayesEstimator final : public MassRegressor {
@@ -120,8 +120,8 @@ class BayesEstimator final : public MassRegressor {
   Sufficient pending_;
   int pending_count_ = 0;
   long pairs_used_ = 0;
-  double z_q_ = 0.0;                ///< standard normal quantile at (1 + credible_level) / 2
-  double t_q_ = 0.0;                ///< Student-t (2 a dof) quantile at the same probability
+  double z_q_ = 0.0;  ///< standard normal quantile at (1 + credible_level) / 2
+  double t_q_ = 0.0;  ///< Student-t (2 a dof) quantile at the same probability
 };
 
 }  // namespace vmass

@@ -41,8 +41,8 @@
 namespace vmass {
 
 struct RlsParams {
-  double noise_std_n = 100.0;       ///< sigma of y for weight 1, N (> 0)
-  double forgetting_factor = 1.0;   ///< lambda in (0.9, 1]; 1 = no forgetting
+  double noise_std_n = 100.0;            ///< sigma of y for weight 1, N (> 0)
+  double forgetting_factor = 1.0;        ///< lambda in (0.9, 1]; 1 = no forgetting
   double min_variance_fraction = 1e-12;  ///< lower eigenvalue bound, fraction of P0, in (0, 1)
 
   /// Empty when valid, else a message naming the key and the violated bound.
