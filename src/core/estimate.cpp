@@ -4,25 +4,38 @@ namespace vmass {
 
 std::string_view status_name(EstimateStatus s) {
   switch (s) {
-    case EstimateStatus::kInitialising: return "initialising";
-    case EstimateStatus::kStaticOnly: return "static_only";
-    case EstimateStatus::kConverging: return "converging";
-    case EstimateStatus::kConverged: return "converged";
-    case EstimateStatus::kDegraded: return "degraded";
+    case EstimateStatus::kInitialising:
+      return "initialising";
+    case EstimateStatus::kStaticOnly:
+      return "static_only";
+    case EstimateStatus::kConverging:
+      return "converging";
+    case EstimateStatus::kConverged:
+      return "converged";
+    case EstimateStatus::kDegraded:
+      return "degraded";
   }
   return "unknown";
 }
 
 std::string_view reason_name(StatusReason r) {
   switch (r) {
-    case StatusReason::kWaitingForStandstill: return "waiting_for_standstill";
-    case StatusReason::kStaticInitialised: return "static_initialised";
-    case StatusReason::kLoadChanged: return "load_changed";
-    case StatusReason::kNoStaticPrior: return "no_static_prior";
-    case StatusReason::kRefining: return "refining";
-    case StatusReason::kIntervalNarrow: return "interval_narrow";
-    case StatusReason::kInputsInvalid: return "inputs_invalid";
-    case StatusReason::kRestored: return "restored";
+    case StatusReason::kWaitingForStandstill:
+      return "waiting_for_standstill";
+    case StatusReason::kStaticInitialised:
+      return "static_initialised";
+    case StatusReason::kLoadChanged:
+      return "load_changed";
+    case StatusReason::kNoStaticPrior:
+      return "no_static_prior";
+    case StatusReason::kRefining:
+      return "refining";
+    case StatusReason::kIntervalNarrow:
+      return "interval_narrow";
+    case StatusReason::kInputsInvalid:
+      return "inputs_invalid";
+    case StatusReason::kRestored:
+      return "restored";
   }
   return "unknown";
 }

@@ -8,21 +8,36 @@ namespace vmass {
 
 std::string_view verdict_name(PairVerdict v) {
   switch (v) {
-    case PairVerdict::kAccepted: return "accepted";
-    case PairVerdict::kDisabled: return "disabled";
-    case PairVerdict::kInputsInvalid: return "inputs_invalid";
-    case PairVerdict::kWarmingUp: return "warming_up";
-    case PairVerdict::kTimeGap: return "time_gap";
-    case PairVerdict::kSpeed: return "speed";
-    case PairVerdict::kLateralAccel: return "lateral_accel";
-    case PairVerdict::kLongitudinalAccel: return "longitudinal_accel";
-    case PairVerdict::kSteering: return "steering";
-    case PairVerdict::kSmallDeltaAccel: return "small_delta_accel";
-    case PairVerdict::kSmallDeltaForce: return "small_delta_force";
-    case PairVerdict::kGearChange: return "gear_change";
-    case PairVerdict::kNonFinite: return "non_finite";
-    case PairVerdict::kInnovation: return "innovation";
-    case PairVerdict::kCount: break;
+    case PairVerdict::kAccepted:
+      return "accepted";
+    case PairVerdict::kDisabled:
+      return "disabled";
+    case PairVerdict::kInputsInvalid:
+      return "inputs_invalid";
+    case PairVerdict::kWarmingUp:
+      return "warming_up";
+    case PairVerdict::kTimeGap:
+      return "time_gap";
+    case PairVerdict::kSpeed:
+      return "speed";
+    case PairVerdict::kLateralAccel:
+      return "lateral_accel";
+    case PairVerdict::kLongitudinalAccel:
+      return "longitudinal_accel";
+    case PairVerdict::kSteering:
+      return "steering";
+    case PairVerdict::kSmallDeltaAccel:
+      return "small_delta_accel";
+    case PairVerdict::kSmallDeltaForce:
+      return "small_delta_force";
+    case PairVerdict::kGearChange:
+      return "gear_change";
+    case PairVerdict::kNonFinite:
+      return "non_finite";
+    case PairVerdict::kInnovation:
+      return "innovation";
+    case PairVerdict::kCount:
+      break;
   }
   return "unknown";
 }

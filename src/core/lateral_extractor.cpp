@@ -89,9 +89,12 @@ Extraction LateralExtractor::step(const Sample& s) {
     out.verdict = PairVerdict::kNonFinite;
     return out;
   }
-  const Record now{s.time_us,       s.accel_x_mps2,
-                   accel_y_filter_.step(s.accel_y_mps2), force_filter_.step(forces.total_n),
-                   s.speed_mps,     s.steering_wheel_angle_rad};
+  const Record now{s.time_us,
+                   s.accel_x_mps2,
+                   accel_y_filter_.step(s.accel_y_mps2),
+                   force_filter_.step(forces.total_n),
+                   s.speed_mps,
+                   s.steering_wheel_angle_rad};
   history_.push(now);
   if (history_.size() <= static_cast<std::size_t>(steps_)) {
     out.verdict = PairVerdict::kWarmingUp;

@@ -32,15 +32,23 @@ void LateralVelocityFilter::step(double dt_s, double accel_x_mps2, double accel_
     p_(0, 0) = params_.speed_noise_std_mps * params_.speed_noise_std_mps;
     p_(1, 1) = params_.initial_lateral_velocity_std_mps * params_.initial_lateral_velocity_std_mps;
     initialised_ = true;
+    last_inputs_ << accel_x_mps2, accel_y_mps2, yaw_rate_radps;
     return;
   }
-  // Predict: exact solution of the linear ODE over dt with the inputs held constant.
-  const double angle = yaw_rate_radps * dt_s;
-  const double c = std::cos(angle);
-  const double s = std::sin(angle);
-  Eigen::Matrix2d f;
-  f << c, s, -s, c;
-  x_ = f * x_ + Eigen::Vector2d(accel_x_mps2, accel_y_mps2) * dt_s;
+  // Predict with the trapezoidal (Crank-Nicolson) rule on x' = A(r) x + a:
+  //   (I - h/2 A1) x1 = (I + h/2 A0) x0 + h/2 (a0 + a1)
+  // It is exact for the kinematic identity dv_x/dt = a_x + r v_y at both ends of the step;
+  // holding the first sample's inputs instead makes the v_x innovations drag v_y half a step
+  // behind, which biases the differenced slip angles (and so the mass) by about 0.6%.
+  const Eigen::Vector3d inputs(accel_x_mps2, accel_y_mps2, yaw_rate_radps);
+  const double h2 = 0.5 * dt_s;
+  Eigen::Matrix2d forward, backward;
+  forward << 1.0, h2 * last_inputs_(2), -h2 * last_inputs_(2), 1.0;
+  backward << 1.0, -h2 * inputs(2), h2 * inputs(2), 1.0;
+  const Eigen::Matrix2d backward_inv = backward.inverse();  // det = 1 + (h r / 2)^2 > 0
+  const Eigen::Matrix2d f = backward_inv * forward;
+  x_ = f * x_ + backward_inv * (h2 * (last_inputs_.head<2>() + inputs.head<2>()));
+  last_inputs_ = inputs;
   const double q = params_.accel_noise_std_mps2 * dt_s;
   p_ = f * p_ * f.transpose();
   p_(0, 0) += q * q;

@@ -51,8 +51,8 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
   }
   const double force_n = s.wheel_torque_nm / vehicle_.wheel_radius_m -
                          s.brake_pressure_pa * vehicle_.brake_gain_n_per_pa;
-  if (!std::isfinite(force_n) || !std::isfinite(s.accel_x_mps2) ||
-      !std::isfinite(s.accel_y_mps2) || !std::isfinite(s.speed_mps)) {
+  if (!std::isfinite(force_n) || !std::isfinite(s.accel_x_mps2) || !std::isfinite(s.accel_y_mps2) ||
+      !std::isfinite(s.speed_mps)) {
     reset();
     out.verdict = PairVerdict::kNonFinite;
     return out;

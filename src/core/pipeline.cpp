@@ -125,9 +125,8 @@ void Pipeline::refresh_estimate(const Sample& sample) {
     estimate_.status = EstimateStatus::kDegraded;
     estimate_.reason = StatusReason::kInputsInvalid;
   } else if (state.pairs_used == 0) {
-    estimate_.status = prior_reason_ == StatusReason::kNoStaticPrior
-                           ? EstimateStatus::kInitialising
-                           : EstimateStatus::kStaticOnly;
+    estimate_.status = prior_reason_ == StatusReason::kNoStaticPrior ? EstimateStatus::kInitialising
+                                                                     : EstimateStatus::kStaticOnly;
     estimate_.reason = prior_reason_;
   } else {
     const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);

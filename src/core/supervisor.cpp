@@ -36,9 +36,8 @@ PairEvent Supervisor::offer(Block block, const Extraction& extraction, MassRegre
   event.predicted_y_n = prediction.y_n;
   event.innovation_variance_n2 = prediction.variance_n2;
   const double innovation = extraction.pair.y_n - prediction.y_n;
-  event.test_ratio = prediction.variance_n2 > 0.0
-                         ? std::abs(innovation) / std::sqrt(prediction.variance_n2)
-                         : 0.0;
+  event.test_ratio =
+      prediction.variance_n2 > 0.0 ? std::abs(innovation) / std::sqrt(prediction.variance_n2) : 0.0;
   const bool gating = pairs_since_reset_ >= params_.min_pairs_before_gating;
   const bool outlier = gating && !(event.test_ratio <= params_.innovation_gate_sigma);
   if (outlier && consecutive_rejections_ < params_.max_consecutive_rejections) {

@@ -7,7 +7,8 @@
 namespace vmass {
 
 double VehicleParams::rotating_mass_for_gear(int gear, bool gear_valid) const {
-  if (gear_valid && gear >= 1 && static_cast<std::size_t>(gear) <= rotating_mass_by_gear_kg.size()) {
+  if (gear_valid && gear >= 1 &&
+      static_cast<std::size_t>(gear) <= rotating_mass_by_gear_kg.size()) {
     return rotating_mass_by_gear_kg[static_cast<std::size_t>(gear) - 1];
   }
   return rotating_mass_kg;

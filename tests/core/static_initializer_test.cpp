@@ -61,7 +61,8 @@ TEST(StaticInitializer, AveragesNoisyStandstillWindow) {
   const double z = deflection_for(1700.0, v, s);
   std::optional<StaticMass> result;
   TimeUs t = 0;
-  for (; t < 10 * kUsPerSecond && !result; t += 10'000) result = init.step(standing(t, z + noise(rng)));
+  for (; t < 10 * kUsPerSecond && !result; t += 10'000)
+    result = init.step(standing(t, z + noise(rng)));
   ASSERT_TRUE(result.has_value());
   EXPECT_FALSE(result->load_changed);
   // 1 s settle + 2 s window.

@@ -48,9 +48,9 @@ class LateralExtractor {
   void reset();
   const LateralVelocityFilter& velocity_filter() const { return velocity_filter_; }
 
-  static constexpr InputMask kRequired =
-      input_bit(Input::kAccelX) | input_bit(Input::kAccelY) | input_bit(Input::kYawRate) |
-      input_bit(Input::kSpeed) | input_bit(Input::kSteeringWheelAngle);
+  static constexpr InputMask kRequired = input_bit(Input::kAccelX) | input_bit(Input::kAccelY) |
+                                         input_bit(Input::kYawRate) | input_bit(Input::kSpeed) |
+                                         input_bit(Input::kSteeringWheelAngle);
 
  private:
   struct Record {

@@ -23,7 +23,7 @@ namespace vmass {
 struct LateralVelocityFilterParams {
   double accel_noise_std_mps2 = 0.05;
   double speed_noise_std_mps = 0.05;
-  double pseudo_lateral_velocity_std_mps = 1.0;
+  double pseudo_lateral_velocity_std_mps = 10.0;
   double initial_lateral_velocity_std_mps = 0.5;
 
   std::string validate() const;
@@ -47,6 +47,7 @@ class LateralVelocityFilter {
   bool initialised_ = false;
   Eigen::Vector2d x_ = Eigen::Vector2d::Zero();
   Eigen::Matrix2d p_ = Eigen::Matrix2d::Identity();
+  Eigen::Vector3d last_inputs_ = Eigen::Vector3d::Zero();  ///< a_x, a_y, r of the last step
 };
 
 }  // namespace vmass

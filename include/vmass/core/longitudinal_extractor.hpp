@@ -46,10 +46,9 @@ class LongitudinalExtractor {
   void reset();
 
   /// Inputs this block needs.
-  static constexpr InputMask kRequired = input_bit(Input::kWheelTorque) |
-                                         input_bit(Input::kBrakePressure) |
-                                         input_bit(Input::kAccelX) | input_bit(Input::kAccelY) |
-                                         input_bit(Input::kSpeed);
+  static constexpr InputMask kRequired =
+      input_bit(Input::kWheelTorque) | input_bit(Input::kBrakePressure) |
+      input_bit(Input::kAccelX) | input_bit(Input::kAccelY) | input_bit(Input::kSpeed);
 
  private:
   struct Record {

@@ -7,9 +7,9 @@ namespace vmass {
 
 struct MassPrior {
   double mass_kg = 0.0;
-  double mass_std_kg = 0.0;   ///< > 0
+  double mass_std_kg = 0.0;  ///< > 0
   double mu_n = 0.0;
-  double mu_std_n = 0.0;      ///< > 0
+  double mu_std_n = 0.0;  ///< > 0
 };
 
 }  // namespace vmass

@@ -19,12 +19,12 @@ namespace vmass {
 struct RegressorState {
   double mass_kg = 0.0;
   double mu_n = 0.0;
-  double mass_std_kg = 0.0;       ///< standard deviation of M
-  double mu_std_n = 0.0;          ///< standard deviation of mu
-  double ci_low_kg = 0.0;         ///< 95% interval on M (RLS: Gaussian; Bayes: Student-t credible)
+  double mass_std_kg = 0.0;  ///< standard deviation of M
+  double mu_std_n = 0.0;     ///< standard deviation of mu
+  double ci_low_kg = 0.0;    ///< 95% interval on M (RLS: Gaussian; Bayes: Student-t credible)
   double ci_high_kg = 0.0;
-  double noise_std_n = 0.0;       ///< current estimate (or configured value) of sigma
-  long pairs_used = 0;            ///< pairs that have entered the published estimate
+  double noise_std_n = 0.0;  ///< current estimate (or configured value) of sigma
+  long pairs_used = 0;       ///< pairs that have entered the published estimate
 };
 
 /// Predictive distribution of a pair's y before it is used: mean and variance (N^2).

@@ -24,9 +24,9 @@ std::string_view block_name(Block b);
 struct RegressionPair {
   TimeUs time_us = 0;
   Block block = Block::kLongitudinal;
-  double y_n = 0.0;           ///< differenced force, N
+  double y_n = 0.0;               ///< differenced force, N
   double delta_accel_mps2 = 0.0;  ///< phi[0], differenced acceleration, m/s^2
-  double weight = 1.0;        ///< relative precision, > 0
+  double weight = 1.0;            ///< relative precision, > 0
 };
 
 }  // namespace vmass

@@ -18,15 +18,15 @@ namespace vmass {
 
 /// The estimator inputs, in the order of Sample's fields.
 enum class Input : std::uint8_t {
-  kWheelTorque = 0,         ///< total driving torque at the wheels, N*m (sum over driven axles)
-  kBrakePressure,           ///< master-cylinder brake pressure, Pa
-  kAccelX,                  ///< longitudinal acceleration (specific force), m/s^2
-  kAccelY,                  ///< lateral acceleration (specific force), m/s^2
-  kYawRate,                 ///< yaw rate, rad/s
-  kSpeed,                   ///< longitudinal vehicle speed, m/s
-  kSteeringWheelAngle,      ///< steering-wheel angle, rad
-  kRearRightDeflection,     ///< rear-right suspension deflection, m (compression positive)
-  kGear,                    ///< engaged gear (1..N, 0 neutral, -1 reverse); optional input
+  kWheelTorque = 0,      ///< total driving torque at the wheels, N*m (sum over driven axles)
+  kBrakePressure,        ///< master-cylinder brake pressure, Pa
+  kAccelX,               ///< longitudinal acceleration (specific force), m/s^2
+  kAccelY,               ///< lateral acceleration (specific force), m/s^2
+  kYawRate,              ///< yaw rate, rad/s
+  kSpeed,                ///< longitudinal vehicle speed, m/s
+  kSteeringWheelAngle,   ///< steering-wheel angle, rad
+  kRearRightDeflection,  ///< rear-right suspension deflection, m (compression positive)
+  kGear,                 ///< engaged gear (1..N, 0 neutral, -1 reverse); optional input
   kCount
 };
 

@@ -30,10 +30,10 @@ struct StaticInitParams {
   double settle_s = 1.0;
   double standstill_window_s = 2.0;
   double max_deflection_std_m = 0.002;
-  double prior_std_kg = 60.0;              ///< std of the static mass inside the calibrated range
+  double prior_std_kg = 60.0;                ///< std of the static mass inside the calibrated range
   double out_of_range_prior_std_kg = 250.0;  ///< beyond the linear/calibrated range
-  double no_static_prior_std_kg = 400.0;   ///< driving before any standstill window
-  double mu_prior_std_n = 300.0;           ///< prior std of the model imprecision mu
+  double no_static_prior_std_kg = 400.0;     ///< driving before any standstill window
+  double mu_prior_std_n = 300.0;             ///< prior std of the model imprecision mu
   double load_change_sigma = 6.0;
   double min_load_change_m = 0.0005;
 
@@ -44,10 +44,10 @@ struct StaticInitParams {
 struct StaticMass {
   TimeUs time_us = 0;
   MassPrior prior;
-  double deflection_m = 0.0;        ///< window mean
-  double deflection_std_m = 0.0;    ///< window spread
-  double added_mass_kg = 0.0;       ///< M_initial - M_idle
-  bool load_changed = false;        ///< false for the first initialisation
+  double deflection_m = 0.0;      ///< window mean
+  double deflection_std_m = 0.0;  ///< window spread
+  double added_mass_kg = 0.0;     ///< M_initial - M_idle
+  bool load_changed = false;      ///< false for the first initialisation
   bool beyond_calibrated_range = false;
 };
 

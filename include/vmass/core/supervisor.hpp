@@ -33,8 +33,8 @@ struct SupervisorParams {
 
 struct BlockCounters {
   long ticks = 0;
-  long candidates = 0;          ///< pairs that passed the block's gates
-  long accepted = 0;            ///< pairs handed to the regressor
+  long candidates = 0;  ///< pairs that passed the block's gates
+  long accepted = 0;    ///< pairs handed to the regressor
   long rejected_innovation = 0;
   double availability() const {
     return ticks > 0 ? static_cast<double>(accepted) / static_cast<double>(ticks) : 0.0;

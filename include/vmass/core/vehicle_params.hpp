@@ -16,16 +16,16 @@
 namespace vmass {
 
 struct VehicleParams {
-  double empty_mass_kg = 0.0;                  ///< M_idle
-  double wheelbase_m = 0.0;                    ///< l
-  double cg_to_front_axle_m = 0.0;             ///< l_f
-  double wheel_radius_m = 0.0;                 ///< r_wheel
-  double brake_gain_n_per_pa = 0.0;            ///< K_brake
-  double steering_ratio = 0.0;                 ///< steering-wheel angle / road-wheel angle
+  double empty_mass_kg = 0.0;                        ///< M_idle
+  double wheelbase_m = 0.0;                          ///< l
+  double cg_to_front_axle_m = 0.0;                   ///< l_f
+  double wheel_radius_m = 0.0;                       ///< r_wheel
+  double brake_gain_n_per_pa = 0.0;                  ///< K_brake
+  double steering_ratio = 0.0;                       ///< steering-wheel angle / road-wheel angle
   double cornering_stiffness_front_n_per_rad = 0.0;  ///< C_alpha_f, per axle
   double cornering_stiffness_rear_n_per_rad = 0.0;   ///< C_alpha_r, per axle
-  double rotating_mass_kg = 0.0;               ///< J / r^2, constant
-  std::vector<double> rotating_mass_by_gear_kg;  ///< optional, index gear - 1
+  double rotating_mass_kg = 0.0;                     ///< J / r^2, constant
+  std::vector<double> rotating_mass_by_gear_kg;      ///< optional, index gear - 1
   double gravity_mps2 = 9.80665;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
@@ -35,10 +35,10 @@ struct VehicleParams {
 };
 
 struct SuspensionParams {
-  double stiffness_n_per_m = 0.0;             ///< c_Brr
-  double empty_deflection_m = 0.0;            ///< z0
+  double stiffness_n_per_m = 0.0;                                       ///< c_Brr
+  double empty_deflection_m = 0.0;                                      ///< z0
   double progressive_knee_m = std::numeric_limits<double>::infinity();  ///< z_knee
-  double progressive_rate_n_per_m2 = 0.0;     ///< k2
+  double progressive_rate_n_per_m2 = 0.0;                               ///< k2
   double linear_range_kg = std::numeric_limits<double>::infinity();
   double calibrated_range_kg = std::numeric_limits<double>::infinity();
 

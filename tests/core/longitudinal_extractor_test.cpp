@@ -1,0 +1,150 @@
+// Given a drive with a known mass on a varying grade with drag and rolling resistance, the
+// differenced pairs (eq. 5) regress to that mass: the resistive forces cancel.
+#include "vmass/core/longitudinal_extractor.hpp"
+
+#include <gtest/gtest.h>
+#include <Eigen/Dense>
+
+#include "synthetic_drive.hpp"
+
+namespace vmass {
+namespace {
+
+using testing::LongitudinalDrive;
+
+// Ordinary least squares of y = M da + mu over the pairs (independent of the regressors).
+Eigen::Vector2d batch_fit(const std::vector<RegressionPair>& pairs) {
+  Eigen::MatrixXd phi(pairs.size(), 2);
+  Eigen::VectorXd y(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    phi(static_cast<Eigen::Index>(i), 0) = pairs[i].delta_accel_mps2;
+    phi(static_cast<Eigen::Index>(i), 1) = 1.0;
+    y(static_cast<Eigen::Index>(i)) = pairs[i].y_n;
+  }
+  return phi.colPivHouseholderQr().solve(y);
+}
+
+std::vector<RegressionPair> extract(const std::vector<Sample>& samples, const VehicleParams& v,
+                                    const LongitudinalParams& p, const DifferencingParams& d) {
+  LongitudinalExtractor ex(v, p, d);
+  std::vector<RegressionPair> pairs;
+  for (const Sample& s : samples) {
+    const Extraction e = ex.step(s);
+    if (e.has_pair()) pairs.push_back(e.pair);
+  }
+  return pairs;
+}
+
+TEST(LongitudinalExtractor, SlopeAndDragCancelInDifferences) {
+  const VehicleParams v = testing::test_vehicle();
+  LongitudinalDrive drive;
+  const auto samples = testing::longitudinal_samples(drive, v, 0.0, 120.0, 15.0, 0.01);
+  const auto pairs = extract(samples, v, LongitudinalParams{}, DifferencingParams{});
+  ASSERT_GT(pairs.size(), 5000u);
+  const Eigen::Vector2d theta = batch_fit(pairs);
+  // Residual of differencing: drag changes by 2 k v dv and the grade term is felt by M only
+  // (the rotating mass correction adds m_rot g d(sin grade)); both are tiny at dt = 0.02 s.
+  EXPECT_NEAR(theta(0), drive.mass_kg, 0.002 * drive.mass_kg);
+  EXPECT_NEAR(theta(1), 0.0, 5.0);
+}
+
+TEST(LongitudinalExtractor, WithoutRotatingMassCorrectionTheMassIsBiased) {
+  VehicleParams v = testing::test_vehicle();
+  LongitudinalDrive drive;
+  const auto samples = testing::longitudinal_samples(drive, v, 0.0, 60.0, 15.0, 0.01);
+  v.rotating_mass_kg = 0.0;  // the paper's model
+  const Eigen::Vector2d theta =
+      batch_fit(extract(samples, v, LongitudinalParams{}, DifferencingParams{}));
+  EXPECT_NEAR(theta(0), drive.mass_kg + drive.rotating_mass_kg, 0.002 * drive.mass_kg);
+}
+
+TEST(LongitudinalExtractor, LongerDifferencingStepStillCancelsResistance) {
+  const VehicleParams v = testing::test_vehicle();
+  LongitudinalDrive drive;
+  const auto samples = testing::longitudinal_samples(drive, v, 0.0, 120.0, 15.0, 0.01);
+  DifferencingParams d;
+  d.differencing_dt_s = 0.2;  // the paper's CAN setting
+  const Eigen::Vector2d theta = batch_fit(extract(samples, v, LongitudinalParams{}, d));
+  EXPECT_NEAR(theta(0), drive.mass_kg, 0.005 * drive.mass_kg);
+}
+
+TEST(LongitudinalExtractor, GatesOfTableII) {
+  const VehicleParams v = testing::test_vehicle();
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  LongitudinalDrive drive;
+  auto samples = testing::longitudinal_samples(drive, v, 0.0, 5.0, 15.0, 0.01);
+  // Lateral acceleration above 0.2 m/s^2 blocks every pair.
+  for (Sample& s : samples) s.accel_y_mps2 = 0.25;
+  for (const Sample& s : samples) {
+    const Extraction e = ex.step(s);
+    EXPECT_FALSE(e.has_pair());
+  }
+  // Constant speed: |da_x| below 0.01 -> no pair.
+  LongitudinalExtractor cruise(v, LongitudinalParams{}, DifferencingParams{});
+  LongitudinalDrive flat;
+  flat.accel_mps2 = [](double) { return 0.0; };
+  flat.grade_rad = [](double) { return 0.0; };
+  int small = 0;
+  for (const Sample& s : testing::longitudinal_samples(flat, v, 0.0, 5.0, 20.0, 0.01)) {
+    const Extraction e = cruise.step(s);
+    EXPECT_FALSE(e.has_pair());
+    small += e.verdict == PairVerdict::kSmallDeltaAccel;
+  }
+  EXPECT_GT(small, 400);
+}
+
+TEST(LongitudinalExtractor, GearChangeInsideWindowIsRejected) {
+  const VehicleParams v = testing::test_vehicle();
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  LongitudinalDrive drive;
+  auto samples = testing::longitudinal_samples(drive, v, 0.0, 2.0, 15.0, 0.01);
+  for (std::size_t i = 0; i < samples.size(); ++i) samples[i].set(Input::kGear, i < 100 ? 2 : 3);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Extraction e = ex.step(samples[i]);
+    if (i == 100 || i == 101) {
+      EXPECT_EQ(e.verdict, PairVerdict::kGearChange) << i;
+    }
+  }
+}
+
+TEST(LongitudinalExtractor, NeverDifferencesAcrossInvalidOrNonFiniteInputs) {
+  const VehicleParams v = testing::test_vehicle();
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  LongitudinalDrive drive;
+  auto samples = testing::longitudinal_samples(drive, v, 0.0, 3.0, 15.0, 0.01);
+  samples[150].valid &= ~input_bit(Input::kAccelX);
+  samples[200].wheel_torque_nm = std::nan("");
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Extraction e = ex.step(samples[i]);
+    if (i == 150) {
+      EXPECT_EQ(e.verdict, PairVerdict::kInputsInvalid);
+    }
+    if (i == 200) {
+      EXPECT_EQ(e.verdict, PairVerdict::kNonFinite);
+    }
+    // The two ticks after a hole have no history dt back.
+    if (i == 151 || i == 152 || i == 201 || i == 202) {
+      EXPECT_EQ(e.verdict, PairVerdict::kWarmingUp);
+    }
+    if (e.has_pair()) {
+      EXPECT_TRUE(std::isfinite(e.pair.y_n));
+    }
+  }
+}
+
+TEST(LongitudinalExtractor, TimeGapIsNotDifferenced) {
+  const VehicleParams v = testing::test_vehicle();
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  LongitudinalDrive drive;
+  auto samples = testing::longitudinal_samples(drive, v, 0.0, 3.0, 15.0, 0.01);
+  for (std::size_t i = 120; i < samples.size(); ++i) samples[i].time_us += 50'000;  // 50 ms hole
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Extraction e = ex.step(samples[i]);
+    if (i == 120 || i == 121) {
+      EXPECT_EQ(e.verdict, PairVerdict::kTimeGap) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vmass
