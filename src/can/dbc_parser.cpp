@@ -6,6 +6,7 @@
 // with a warning. After the text, a finishing pass attaches multiplexing, checks every signal
 // against its message and applies attribute defaults.
 #include <algorithm>
+#include <bitset>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -1047,6 +1048,62 @@ class Parser {
       if (sg.mux_parent >= 0) sg.mux_parent = new_index[static_cast<std::size_t>(sg.mux_parent)];
     }
     m.signals = std::move(kept);
+    check_overlaps(m);
+  }
+
+  static std::bitset<8 * kFdMaxLen> bits_of(const Signal& sg) {
+    std::bitset<8 * kFdMaxLen> b;
+    int p = sg.byte_order == ByteOrder::kIntel ? sg.start_bit
+                                               : (sg.start_bit / 8) * 8 + (7 - sg.start_bit % 8);
+    for (int i = 0; i < sg.length; ++i, ++p) {
+      // Both layouts as positions in their own linear order; map Motorola back to bit numbers.
+      const int bit = sg.byte_order == ByteOrder::kIntel ? p : (p / 8) * 8 + (7 - p % 8);
+      if (bit >= 0 && bit < 8 * kFdMaxLen) b.set(static_cast<std::size_t>(bit));
+    }
+    return b;
+  }
+
+  /// (switch, ranges selecting the next link) from a signal up to the root of its mux tree.
+  static std::vector<std::pair<int, const std::vector<MuxRange>*>> mux_chain(const Message& m,
+                                                                             std::size_t i) {
+    std::vector<std::pair<int, const std::vector<MuxRange>*>> chain;
+    const Signal* s = &m.signals[i];
+    while (s->mux_parent >= 0 && chain.size() <= m.signals.size()) {
+      chain.emplace_back(s->mux_parent, &s->mux_ranges);
+      s = &m.signals[static_cast<std::size_t>(s->mux_parent)];
+    }
+    return chain;
+  }
+
+  /// False when some switch both depend on selects them with disjoint values.
+  static bool can_coexist(const Message& m, std::size_t i, std::size_t j) {
+    for (const auto& [p, ra] : mux_chain(m, i)) {
+      for (const auto& [q, rb] : mux_chain(m, j)) {
+        if (p != q) continue;
+        bool meet = false;
+        for (const MuxRange& x : *ra) {
+          for (const MuxRange& y : *rb) meet = meet || (x.lo <= y.hi && y.lo <= x.hi);
+        }
+        if (!meet) return false;
+      }
+    }
+    return true;
+  }
+
+  /// Signals that can be present together and share bits: loaded as written, reported.
+  void check_overlaps(const Message& m) {
+    std::vector<std::bitset<8 * kFdMaxLen>> bits;
+    bits.reserve(m.signals.size());
+    for (const Signal& sg : m.signals) bits.push_back(bits_of(sg));
+    for (std::size_t i = 0; i < m.signals.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if ((bits[i] & bits[j]).any() && can_coexist(m, i, j)) {
+          deviation(m.signals[i].line, "signal " + m.signals[i].name + " of message " + m.name +
+                                           " overlaps signal " + m.signals[j].name);
+          break;
+        }
+      }
+    }
   }
 
   static std::string hex(std::uint32_t v) {

@@ -290,6 +290,20 @@ TEST(DbcParser, MultiplexedSignalWithoutSwitchIsAnError) {
   EXPECT_EQ(r.database.messages[0].signals.size(), 1u);
 }
 
+TEST(DbcParser, OverlapsAreReportedUnlessTheMultiplexorSeparatesThem) {
+  const DbcParseResult r = parse_dbc(
+      "BO_ 1 M: 8 A\n"
+      " SG_ Sw M : 0|8@1+ (1,0) [0|0] \"\" A\n"
+      " SG_ P m0 : 8|16@1+ (1,0) [0|0] \"\" A\n"
+      " SG_ Q m1 : 8|16@1+ (1,0) [0|0] \"\" A\n"   // same bits as P, other mux value: fine
+      " SG_ R : 23|8@0+ (1,0) [0|0] \"\" A\n"      // byte 2: overlaps P and Q
+      " SG_ S : 32|8@1+ (1,0) [0|0] \"\" A\n",
+      "ov.dbc");
+  ASSERT_TRUE(r.ok()) << dump(r);
+  EXPECT_EQ(r.warning_count(), 1) << dump(r);
+  EXPECT_TRUE(has_diagnostic(r, Severity::kWarning, 5, "signal R of message M overlaps"));
+}
+
 TEST(DbcParser, DuplicateIdsAreErrors) {
   const DbcParseResult r = parse_dbc("BO_ 5 A: 8 X\nBO_ 5 B: 8 X\n", "dup.dbc");
   EXPECT_FALSE(r.ok());
@@ -370,6 +384,12 @@ TEST(RealDbcDetails, FactsCheckedAgainstTheFiles) {
   EXPECT_NE(ru.comment.find("\nPrim\xC3\xA4rachse: KBI_Reifenumfang\n"), std::string::npos);
   // Comments naming signals the file does not define: warnings with their line.
   EXPECT_TRUE(has_diagnostic(vw, Severity::kWarning, 1630, "unknown signal ACC_Hold_Request"));
+  // PLA_01 declares signals on the same bits (cantools cannot decode that message).
+  EXPECT_TRUE(has_diagnostic(vw, Severity::kWarning, 91,
+                             "PLA_Bremsverzoegerung of message PLA_01 overlaps signal "
+                             "PLA_Bremsmoment"));
+  EXPECT_TRUE(has_diagnostic(vw, Severity::kWarning, 92, "PLA_Anf_Bremsverzoegerung"));
+  EXPECT_EQ(vw.warning_count(), 19) << dump(vw);
 
   const DbcParseResult toyota = load_dbc_file(kDataDir + "/dbc/toyota_2017_ref_pt.dbc");
   EXPECT_EQ(toyota.warning_count(), 32);
