@@ -50,6 +50,7 @@ void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   lateral_.reset();
   has_prior_ = true;
   prior_reason_ = reason;
+  prior_ = prior;
   estimate_.initial_mass_kg = prior.mass_kg;
 }
 
@@ -57,6 +58,10 @@ StepResult Pipeline::step(const Sample& sample) {
   StepResult result;
 
   if (const auto static_mass = static_init_.step(sample)) {
+    // Every reported window became the static initialiser's reference (kept for snapshots).
+    has_reference_ = true;
+    reference_deflection_m_ = static_mass->deflection_m;
+    reference_deflection_std_m_ = static_mass->deflection_std_m;
     // The first standstill after driving on the empty-mass prior does not throw away what the
     // events taught; a load change always restarts (the old estimate is about another vehicle).
     const bool events_used = has_prior_ && regressor_->state().pairs_used > 0;
@@ -91,6 +96,104 @@ StepResult Pipeline::step(const Sample& sample) {
     result.estimate_changed = true;
   }
   return result;
+}
+
+PipelineSnapshot Pipeline::snapshot() const {
+  PipelineSnapshot s;
+  s.type = params_.estimator.type;
+  s.has_prior = has_prior_;
+  s.prior_reason = prior_reason_;
+  s.prior = prior_;
+  s.pairs_used = regressor_->state().pairs_used;
+  const Eigen::Vector2d& theta = rls_.theta();
+  const Eigen::Matrix2d& p = rls_.covariance();
+  s.rls_theta[0] = theta(0);
+  s.rls_theta[1] = theta(1);
+  s.rls_covariance[0] = p(0, 0);
+  s.rls_covariance[1] = p(0, 1);
+  s.rls_covariance[2] = p(1, 0);
+  s.rls_covariance[3] = p(1, 1);
+  const NigPosterior& nig = bayes_.posterior();
+  s.nig_mean[0] = nig.mean(0);
+  s.nig_mean[1] = nig.mean(1);
+  s.nig_scaled_covariance[0] = nig.scaled_covariance(0, 0);
+  s.nig_scaled_covariance[1] = nig.scaled_covariance(0, 1);
+  s.nig_scaled_covariance[2] = nig.scaled_covariance(1, 0);
+  s.nig_scaled_covariance[3] = nig.scaled_covariance(1, 1);
+  s.nig_shape = nig.shape;
+  s.nig_scale = nig.scale;
+  s.has_reference = has_reference_;
+  s.reference_deflection_m = reference_deflection_m_;
+  s.reference_deflection_std_m = reference_deflection_std_m_;
+  s.blocks[0] = supervisor_.counters(Block::kLongitudinal);
+  s.blocks[1] = supervisor_.counters(Block::kLateral);
+  return s;
+}
+
+bool Pipeline::restore(const PipelineSnapshot& s) {
+  if (s.type != params_.estimator.type || !s.has_prior || !s.has_reference) return false;
+  const MassPrior& prior = s.prior;
+  if (!std::isfinite(prior.mass_kg) || !std::isfinite(prior.mu_n) ||
+      !(prior.mass_std_kg > 0.0 && std::isfinite(prior.mass_std_kg)) ||
+      !(prior.mu_std_n > 0.0 && std::isfinite(prior.mu_std_n)) || s.pairs_used < 0 ||
+      !std::isfinite(s.reference_deflection_m) || !std::isfinite(s.reference_deflection_std_m) ||
+      s.reference_deflection_std_m < 0.0) {
+    return false;
+  }
+  for (const BlockCounters& b : s.blocks) {
+    if (b.ticks < 0 || b.candidates < 0 || b.accepted < 0 || b.rejected_innovation < 0) {
+      return false;
+    }
+  }
+  // Try on copies first so that a refused snapshot changes nothing.
+  if (s.type == RegressorType::kRls) {
+    RlsEstimator trial = rls_;
+    trial.reset(prior);
+    Eigen::Matrix2d p;
+    p << s.rls_covariance[0], s.rls_covariance[1], s.rls_covariance[2], s.rls_covariance[3];
+    if (!trial.restore(Eigen::Vector2d(s.rls_theta[0], s.rls_theta[1]), p, s.pairs_used)) {
+      return false;
+    }
+    rls_ = trial;
+  } else {
+    NigPosterior nig;
+    nig.mean << s.nig_mean[0], s.nig_mean[1];
+    nig.scaled_covariance << s.nig_scaled_covariance[0], s.nig_scaled_covariance[1],
+        s.nig_scaled_covariance[2], s.nig_scaled_covariance[3];
+    nig.shape = s.nig_shape;
+    nig.scale = s.nig_scale;
+    BayesEstimator trial = bayes_;
+    trial.reset(prior);
+    if (!trial.restore(nig, s.pairs_used)) return false;
+    bayes_ = trial;
+  }
+  supervisor_.on_regressor_reset();
+  supervisor_.restore_counters(Block::kLongitudinal, s.blocks[0]);
+  supervisor_.restore_counters(Block::kLateral, s.blocks[1]);
+  longitudinal_.reset();
+  lateral_.reset();
+  static_init_.restore_reference(s.reference_deflection_m, s.reference_deflection_std_m);
+  has_reference_ = true;
+  reference_deflection_m_ = s.reference_deflection_m;
+  reference_deflection_std_m_ = s.reference_deflection_std_m;
+  has_prior_ = true;
+  prior_reason_ = StatusReason::kRestored;
+  prior_ = prior;
+
+  const RegressorState state = regressor_->state();
+  estimate_.mass_known = true;
+  estimate_.initial_mass_kg = prior.mass_kg;
+  estimate_.mass_kg = state.mass_kg;
+  estimate_.mu_n = state.mu_n;
+  estimate_.mass_std_kg = state.mass_std_kg;
+  estimate_.ci_low_kg = state.ci_low_kg;
+  estimate_.ci_high_kg = state.ci_high_kg;
+  estimate_.pairs_used = state.pairs_used;
+  estimate_.blocks = s.blocks;
+  estimate_.status =
+      state.pairs_used > 0 ? EstimateStatus::kConverging : EstimateStatus::kStaticOnly;
+  estimate_.reason = StatusReason::kRestored;
+  return true;
 }
 
 void Pipeline::refresh_estimate(const Sample& sample) {

@@ -9,6 +9,13 @@
 // returns whether the published estimate changed and the per-block diagnostic records. Same
 // sample sequence -> bit-identical estimates, in the daemon and offline.
 //
+// snapshot() / restore() carry the estimate across a restart of the daemon (persistence): the
+// regressor's belief (RLS theta and P, or the NIG posterior), the prior that started it, the
+// reference standstill deflection and the block counters. After restore() the first completed
+// standstill window is compared with the restored reference deflection exactly like any later
+// window: when the load changed meanwhile, the static initialisation restarts the regressor.
+// The open Bayes batch and the extractors' short histories are not carried over.
+//
 // Pure: no threads, clocks, files or logging. Not thread-safe. Allocates only in the
 // constructor.
 #pragma once
@@ -59,6 +66,29 @@ struct StepResult {
   std::array<PairEvent, kBlockCount> events{};
 };
 
+/// The state persistence needs to resume a Pipeline (plain values: trivially copyable, so it can
+/// be handed between threads without allocation).
+struct PipelineSnapshot {
+  RegressorType type = RegressorType::kBayes;
+  bool has_prior = false;  ///< false: nothing worth saving (restore() refuses it)
+  StatusReason prior_reason = StatusReason::kWaitingForStandstill;
+  MassPrior prior;         ///< the prior that (re)started the regressor (sets the RLS bound)
+  long pairs_used = 0;
+  // RLS (type kRls): theta = [M, mu] and its covariance P, row-major.
+  double rls_theta[2] = {0.0, 0.0};
+  double rls_covariance[4] = {0.0, 0.0, 0.0, 0.0};
+  // Bayes (type kBayes): the NIG posterior (m, V row-major, a, b).
+  double nig_mean[2] = {0.0, 0.0};
+  double nig_scaled_covariance[4] = {0.0, 0.0, 0.0, 0.0};
+  double nig_shape = 0.0;
+  double nig_scale = 0.0;
+  // The standstill window the current load was measured in (eq. 3), for load-change detection.
+  bool has_reference = false;
+  double reference_deflection_m = 0.0;
+  double reference_deflection_std_m = 0.0;
+  std::array<BlockCounters, kBlockCount> blocks{};
+};
+
 class Pipeline {
  public:
   /// params must be valid (validate() == "").
@@ -70,6 +100,15 @@ class Pipeline {
   const Estimate& estimate() const { return estimate_; }
   const MassRegressor& regressor() const { return *regressor_; }
   const PipelineParams& params() const { return params_; }
+
+  /// The current state, for persistence. Allocates nothing.
+  PipelineSnapshot snapshot() const;
+  /// Resume from a snapshot of a pipeline with the same parameters. Returns false and changes
+  /// nothing when it does not fit: another regressor type, no prior, no reference deflection
+  /// (the load could not be checked), a non-finite value, or a belief the regressor refuses
+  /// (see RlsEstimator::restore, BayesEstimator::restore). On success the estimate reads
+  /// reason `restored` until the next step refreshes it.
+  bool restore(const PipelineSnapshot& snapshot);
 
  private:
   void restart(const MassPrior& prior, StatusReason reason);
@@ -85,6 +124,10 @@ class Pipeline {
   MassRegressor* regressor_;
   bool has_prior_ = false;
   StatusReason prior_reason_ = StatusReason::kWaitingForStandstill;
+  MassPrior prior_;
+  bool has_reference_ = false;
+  double reference_deflection_m_ = 0.0;
+  double reference_deflection_std_m_ = 0.0;
   Estimate estimate_;
 };
 
