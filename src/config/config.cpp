@@ -89,6 +89,9 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     f.read("pseudo_lateral_velocity_std_mps", &p.velocity_filter.pseudo_lateral_velocity_std_mps);
     f.read("initial_lateral_velocity_std_mps",
            &p.velocity_filter.initial_lateral_velocity_std_mps);
+    f.read("accel_x_offset_walk_mps2_per_sqrt_s",
+           &p.velocity_filter.accel_x_offset_walk_mps2_per_sqrt_s);
+    f.read("initial_accel_x_offset_std_mps2", &p.velocity_filter.initial_accel_x_offset_std_mps2);
     f.reject_unknown_keys();
     s.reject_unknown_keys();
   }

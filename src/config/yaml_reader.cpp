@@ -143,7 +143,7 @@ YamlReader YamlReader::child(const std::string& key) {
 
 YAML::Node YamlReader::raw(const std::string& key) {
   used_.push_back(key);
-  return value_node(key);
+  return has(key) ? value_node(key) : YAML::Node();  // never a yaml-cpp "zombie" node
 }
 
 void YamlReader::reject_unknown_keys() const {

@@ -57,6 +57,14 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
     out.verdict = PairVerdict::kNonFinite;
     return out;
   }
+  if (std::abs(s.speed_mps) < params_.min_speed_mps) {
+    // Standing or creeping, the brake model F = K P does not hold (the brakes hold the car with
+    // whatever force it takes): restart the filters, so that their memory of standstill does
+    // not leak into the first pairs after driving off.
+    reset();
+    out.verdict = PairVerdict::kSpeed;
+    return out;
+  }
   const Record now{s.time_us,
                    accel_x_filter_.step(s.accel_x_mps2),
                    accel_y_filter_.step(s.accel_y_mps2),
@@ -73,10 +81,6 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
   const TimeUs expected_us = from_seconds(differencing_.differencing_dt_s);
   if (std::llabs((now.time_us - then.time_us) - expected_us) > tick_us_ / 2) {
     out.verdict = PairVerdict::kTimeGap;
-    return out;
-  }
-  if (std::min(std::abs(now.speed_mps), std::abs(then.speed_mps)) < params_.min_speed_mps) {
-    out.verdict = PairVerdict::kSpeed;
     return out;
   }
   if (std::max(std::abs(now.accel_y_mps2), std::abs(then.accel_y_mps2)) >=
