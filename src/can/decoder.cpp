@@ -73,8 +73,14 @@ bool compile_signal(const Signal& sg, int length_bytes, CompiledSignal& out, std
   out.first_byte = static_cast<std::uint8_t>(first_bit / 8);
   out.byte_count = static_cast<std::uint8_t>(last_bit / 8 - first_bit / 8 + 1);
   out.length = static_cast<std::uint8_t>(sg.length);
+  // Every CanFrame holds 64 data bytes, so an 8-byte load at first_byte is in bounds when
+  // first_byte <= 56; bytes past the frame's length are masked or shifted away.
+  out.fast = out.byte_count <= 8 && out.first_byte + 8 <= kFdMaxLen;
+  out.word_shift = static_cast<std::uint8_t>(
+      sg.byte_order == ByteOrder::kIntel ? out.shift : 8 * (8 - out.byte_count) + out.shift);
   out.mask = sg.length == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << sg.length) - 1;
   out.is_signed = sg.is_signed;
+  out.sign_bit = sg.is_signed ? std::uint64_t{1} << (sg.length - 1) : 0;
   out.byte_order = sg.byte_order;
   out.value_type = sg.value_type;
   out.factor = sg.factor;
@@ -194,7 +200,9 @@ DecodeStatus Decoder::decode_into(const CanFrame& frame, int* message_index, dou
   const DecodeStatus st = classify(frame, &m);
   if (message_index) *message_index = m;
   if (st != DecodeStatus::kOk) return st;
-  std::memset(present, 0, messages_[static_cast<std::size_t>(m)].signal_count);
+  const CompiledMessage& cm = messages_[static_cast<std::size_t>(m)];
+  std::memset(present, cm.switch_count == 0 ? 1 : 0, cm.signal_count);
+  if (cm.switch_count == 0) return decode(frame, [&](int i, double v) { values[i] = v; });
   return decode(frame, [&](int i, double v) {
     values[i] = v;
     present[i] = 1;

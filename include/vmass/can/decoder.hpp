@@ -65,13 +65,16 @@ struct DecodeStats {
 
 /// One signal compiled for extraction (see the header comment for the arithmetic).
 struct CompiledSignal {
-  std::uint64_t mask = 0;  ///< low `length` bits set
+  std::uint64_t mask = 0;      ///< low `length` bits set
+  std::uint64_t sign_bit = 0;  ///< 1 << (length - 1) for signed signals, 0 for unsigned
   double factor = 1.0;
   double offset = 0.0;
   std::uint8_t first_byte = 0;  ///< Intel: least significant byte; Motorola: most significant
   std::uint8_t byte_count = 0;  ///< bytes spanned, 1..9
   std::uint8_t shift = 0;       ///< right shift after assembling the bytes
   std::uint8_t length = 0;      ///< bits, 1..64
+  std::uint8_t word_shift = 0;  ///< fast path: right shift of the 8-byte word (see extract_raw)
+  bool fast = false;            ///< fast path: byte_count <= 8 and 8 bytes readable at first_byte
   bool is_signed = false;
   ByteOrder byte_order = ByteOrder::kIntel;
   ValueType value_type = ValueType::kInteger;
@@ -195,6 +198,18 @@ class SignalSelection {
 
 inline std::int64_t Decoder::extract_raw(const CompiledSignal& s, const std::uint8_t* data) const {
   const std::uint8_t* p = data + s.first_byte;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  if (s.fast) {
+    // One unaligned 8-byte load: Intel shifts it right by start % 8; Motorola byte-swaps it,
+    // which puts the first byte on top, and shifts by 8 * (8 - byte_count) + (7 - lsb % 8).
+    // Sign extension without a branch: (x ^ s) - s with s the sign bit (0 when unsigned).
+    std::uint64_t w;
+    __builtin_memcpy(&w, p, sizeof w);
+    if (s.byte_order == ByteOrder::kMotorola) w = __builtin_bswap64(w);
+    const std::uint64_t bits = (w >> s.word_shift) & s.mask;
+    return static_cast<std::int64_t>((bits ^ s.sign_bit) - s.sign_bit);
+  }
+#endif
   const int n = s.byte_count < 8 ? s.byte_count : 8;
   std::uint64_t bits = 0;
   if (s.byte_order == ByteOrder::kIntel) {
@@ -218,8 +233,9 @@ inline double Decoder::extract_physical(const CompiledSignal& s, const std::uint
   const std::int64_t raw = extract_raw(s, data);
   double v;
   if (s.value_type == ValueType::kInteger) {
-    v = s.is_signed ? static_cast<double>(raw)
-                    : static_cast<double>(static_cast<std::uint64_t>(raw));
+    // Below 64 bits an unsigned raw value is a non-negative int64: one conversion instruction.
+    v = (s.is_signed || s.length < 64) ? static_cast<double>(raw)
+                                       : static_cast<double>(static_cast<std::uint64_t>(raw));
   } else if (s.value_type == ValueType::kFloat32) {
     const auto u = static_cast<std::uint32_t>(raw);
     float f;
@@ -260,6 +276,12 @@ DecodeStatus Decoder::decode(const CanFrame& frame, Sink&& sink, int* message_in
   if (st != DecodeStatus::kOk) return st;
   const CompiledMessage& cm = messages_[static_cast<std::size_t>(m)];
   const CompiledSignal* sig = signals_.data() + cm.signal_begin;
+  if (cm.switch_count == 0) {  // no multiplexing: every signal, in DBC order
+    for (std::uint32_t i = 0; i < cm.signal_count; ++i) {
+      sink(static_cast<int>(i), extract_physical(sig[i], frame.data));
+    }
+    return DecodeStatus::kOk;
+  }
   const std::uint16_t* order = order_.data() + cm.order_begin;
   std::uint64_t switch_raw[kMaxSwitches];
   std::uint32_t switch_present = 0;  // bit per switch slot
