@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Regenerates the golden replay expectation after an intended change of the estimator.
+# Say in the commit why the numbers moved.
+#   scripts/update-golden.sh [BUILD_DIR]   (default: build/ci)
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$repo/build/ci}
+g=$repo/tests/data/golden/paper_exp2
+"$build/bin/vmass-replay" --config "$g/config.yaml" --samples "$g/samples.csv" \
+  --truth "$g/truth.csv" --out "$g/expected_estimate.csv"
+echo "update-golden: rewrote $g/expected_estimate.csv"
