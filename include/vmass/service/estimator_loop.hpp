@@ -1,0 +1,49 @@
+// EstimatorLoop: what the daemon's estimator thread does at each tick, without the thread:
+//
+//   InputValues (latest inputs) --sample_at(T)--> Sample --Pipeline::step--> TickRecord
+//
+// The tick time T is the caller's: T_k = T_0 + k / tick_rate_hz on the input's clock (the log
+// time of a recording, CLOCK_REALTIME for a live bus), so the pipeline always sees the regular
+// grid it differences on, whatever the wake-up jitter. A TickRecord carries everything the
+// publisher needs (estimate, diagnostic pairs, input ages) as plain values for the SPSC queue.
+//
+// Thread-safety: not thread-safe (one estimator thread). tick() allocates nothing.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "vmass/core/pipeline.hpp"
+#include "vmass/service/input_source.hpp"
+
+namespace vmass::service {
+
+/// One tick's outcome (trivially copyable: goes through SpscQueue).
+struct TickRecord {
+  std::int64_t tick = 0;  ///< tick index since start
+  Estimate estimate;
+  std::array<PairEvent, kBlockCount> events{};
+  bool estimate_changed = false;
+  InputMask inputs_valid = 0;             ///< validity of each input at this tick
+  double input_age_s[kInputCount] = {};  ///< T - time of the input's last update; -1: never
+};
+
+class EstimatorLoop {
+ public:
+  /// params must be valid.
+  EstimatorLoop(const PipelineParams& params, const InputTimeouts& timeouts);
+
+  /// Runs tick number `tick` at time tick_us on the latest values.
+  const TickRecord& tick(std::int64_t tick, TimeUs tick_us, const InputValues& values);
+
+  Pipeline& pipeline() { return pipeline_; }
+  const Pipeline& pipeline() const { return pipeline_; }
+  const TickRecord& last() const { return record_; }
+
+ private:
+  Pipeline pipeline_;
+  InputTimeouts timeouts_;
+  TickRecord record_;
+};
+
+}  // namespace vmass::service

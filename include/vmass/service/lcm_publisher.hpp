@@ -1,0 +1,94 @@
+// LcmPublisher: the daemon's LCM output (package vmass, see lcmtypes/*.lcm):
+//   VMASS_ESTIMATE  vmass.mass_estimate_t  every tick, or every estimate_decimation-th tick
+//   VMASS_STATUS    vmass.status_t         every status_period_s (the caller times it)
+//   VMASS_PAIRS     vmass.pair_t           one per tick and block, only when publish_pairs
+// Channel names and the URL come from the `lcm:` config section (or --lcm-url).
+//
+// The to_lcm() conversions are pure and separately testable. Messages are encoded into a
+// buffer reserved at construction and published with lcm::LCM::publish(channel, data, size), so
+// steady-state publishing does not allocate in our code (LCM's UDP provider may).
+//
+// Thread-safety: one thread publishes through an LcmPublisher (LCM serialises publishing per
+// lcm::LCM instance, but the message objects and buffer here are not shared-safe).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+#include <vmass/mass_estimate_t.hpp>
+#include <vmass/pair_t.hpp>
+#include <vmass/status_t.hpp>
+
+#include "vmass/service/estimator_loop.hpp"
+#include "vmass/service/input_source.hpp"
+#include "vmass/service/service_config.hpp"
+#include "vmass/service/tick_stats.hpp"
+
+namespace vmass::service {
+
+/// Daemon state in status_t.state.
+enum class DaemonState : std::uint8_t {
+  kStarting = 0,
+  kRunning = 1,
+  kInputLost = 2,
+  kInputEnded = 3,
+  kStopping = 4,
+};
+std::string_view daemon_state_name(DaemonState s);
+
+/// Everything status_t reports, gathered by the publisher thread.
+struct DaemonStatus {
+  DaemonState state = DaemonState::kStarting;
+  std::string source;
+  std::string detail;
+  double uptime_s = 0.0;
+  double tick_rate_hz = 0.0;
+  TickRecord last;  ///< latest tick (time, estimate, input ages)
+  bool has_tick = false;
+  std::int64_t frames_received = 0, frames_decoded = 0, frames_unknown = 0,
+               frames_malformed = 0, frames_dropped = 0, bus_errors = 0, source_reopens = 0;
+  TickTimingSummary timing;
+  std::int64_t publish_queue_drops = 0;
+  std::int64_t state_saves = 0;
+  bool state_restored = false;
+};
+
+/// Reads a source's counters into *status.
+void copy_counters(const SourceCounters& counters, DaemonStatus* status);
+
+/// Conversions (allocate only when a string field grows past its reserved capacity).
+void to_lcm(const TickRecord& record, std::string_view estimator, vmass::mass_estimate_t* out);
+void to_lcm(const PairEvent& event, Block block, TimeUs tick_us, vmass::pair_t* out);
+void to_lcm(const DaemonStatus& status, vmass::status_t* out);
+
+class LcmPublisher {
+ public:
+  LcmPublisher(lcm::LCM& lcm, const LcmSettings& settings, std::string estimator_name);
+
+  /// Publishes the record's estimate (subject to decimation) and its pairs (when enabled).
+  /// Returns false when a publish failed.
+  bool on_tick(const TickRecord& record);
+  bool publish_status(const DaemonStatus& status);
+
+  std::int64_t estimates_published() const { return estimates_; }
+  std::int64_t publish_failures() const { return failures_; }
+
+ private:
+  template <class Msg>
+  bool publish(const std::string& channel, const Msg& msg);
+
+  lcm::LCM& lcm_;
+  LcmSettings settings_;
+  std::string estimator_;
+  vmass::mass_estimate_t estimate_msg_;
+  vmass::pair_t pair_msg_;
+  vmass::status_t status_msg_;
+  std::vector<std::uint8_t> buffer_;
+  std::int64_t estimates_ = 0;
+  std::int64_t failures_ = 0;
+  std::int64_t decimation_count_ = 0;
+};
+
+}  // namespace vmass::service

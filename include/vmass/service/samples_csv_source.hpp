@@ -1,0 +1,44 @@
+// SamplesCsvSource: a samples.csv file (docs/formats.md) as the daemon's input: each row is one
+// record at its time_s, updating every input (an empty cell: invalid). A legitimate offline
+// input (simulated drives, signals decoded elsewhere) and the daemon's end-to-end test path.
+//
+// Counters: received = rows read, decoded = good rows, malformed = rows skipped as malformed.
+// Reading allocates (CSV parsing); it runs on the receive thread, never the estimator's.
+// Thread-safety: as InputSource.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "vmass/replay/samples_csv.hpp"
+#include "vmass/service/input_source.hpp"
+
+namespace vmass::service {
+
+class SamplesCsvSource final : public InputSource {
+ public:
+  /// Opens the file; nullptr and *error when it cannot be read or its header is wrong.
+  /// Inputs older than timeout_s are stale.
+  static std::unique_ptr<SamplesCsvSource> open(const std::string& path, double timeout_s,
+                                                std::string* error);
+
+  Read read(int timeout_ms) override;
+  TimeUs record_time_us() const override { return record_.time_us; }
+  void apply(InputValues* values) override;
+  bool recorded() const override { return true; }
+  InputTimeouts timeouts() const override { return timeouts_; }
+  std::string describe() const override { return "samples:" + path_; }
+
+  /// Row problems reported by the reader (file:line: ...), at most the first 100.
+  const std::vector<std::string>& warnings() const { return reader_.warnings(); }
+
+ private:
+  SamplesCsvSource(const std::string& path, double timeout_s);
+
+  std::string path_;
+  SamplesCsvReader reader_;
+  InputTimeouts timeouts_;
+  Sample record_;
+};
+
+}  // namespace vmass::service

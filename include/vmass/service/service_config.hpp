@@ -1,0 +1,82 @@
+// ServiceConfig: the daemon's own sections of the config file, `lcm:` and `daemon:`, parsed
+// from the raw YAML that load_config() keeps (Config::lcm, Config::daemon). Errors name the
+// file, the line and the key; unknown keys are errors. Keys and defaults:
+//
+//   lcm:
+//     url: "udpm://239.255.76.67:7667?ttl=0"   # LCM provider URL (--lcm-url overrides)
+//     estimate_channel: VMASS_ESTIMATE
+//     status_channel: VMASS_STATUS
+//     pairs_channel: VMASS_PAIRS
+//     estimate_decimation: 1        # publish every n-th tick's estimate (1 = every tick)
+//     status_period_s: 1.0          # VMASS_STATUS period, s
+//     publish_pairs: false          # debug channel: one vmass.pair_t per tick and block
+//   daemon:
+//     can_interface: can0           # SocketCAN interface when neither --can nor a replay is given
+//     state_file: ""                # "" = $STATE_DIRECTORY/vmassd.state under systemd, else none
+//     persist_interval_s: 30.0      # how often the state is saved while running (and at exit)
+//     input_timeout_s: 0.05         # samples input: a value older than this is stale
+//     publish_queue: 1024           # estimator -> publisher ring capacity, records
+//     realtime:
+//       priority: 0                 # SCHED_FIFO priority of the estimator thread, 1..99; 0 = off
+//       cpu_affinity: []            # CPUs the estimator thread may run on ([] = any)
+//       lock_memory: false          # mlockall(MCL_CURRENT | MCL_FUTURE)
+//
+// Configuration time only (allocates, uses yaml-cpp). Not thread-safe.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vmass/config/config.hpp"
+
+namespace vmass::service {
+
+struct LcmSettings {
+  std::string url = "udpm://239.255.76.67:7667?ttl=0";
+  std::string estimate_channel = "VMASS_ESTIMATE";
+  std::string status_channel = "VMASS_STATUS";
+  std::string pairs_channel = "VMASS_PAIRS";
+  int estimate_decimation = 1;
+  double status_period_s = 1.0;
+  bool publish_pairs = false;
+
+  /// "" or "lcm.key: message".
+  std::string validate() const;
+};
+
+struct RealtimeSettings {
+  int priority = 0;
+  std::vector<int> cpu_affinity;
+  bool lock_memory = false;
+
+  std::string validate() const;
+};
+
+struct DaemonSettings {
+  std::string can_interface = "can0";
+  std::string state_file;
+  double persist_interval_s = 30.0;
+  double input_timeout_s = 0.05;
+  int publish_queue = 1024;
+  RealtimeSettings realtime;
+
+  std::string validate() const;
+};
+
+struct ServiceSettings {
+  LcmSettings lcm;
+  DaemonSettings daemon;
+  std::string dbc_path;  ///< `can.dbc` resolved against the config file ("" when absent)
+};
+
+struct ServiceSettingsLoad {
+  ServiceSettings settings;
+  std::string error;  ///< "file:line: key: message" or ""
+  bool ok() const { return error.empty(); }
+};
+
+/// Parses config.lcm and config.daemon (and reads can.dbc; the rest of `can:` belongs to the
+/// CAN signal mapping and is not checked here).
+ServiceSettingsLoad load_service_settings(const Config& config);
+
+}  // namespace vmass::service

@@ -1,0 +1,181 @@
+#include "vmass/service/lcm_publisher.hpp"
+
+#include <cmath>
+
+namespace vmass::service {
+namespace {
+
+// A non-finite double must never reach the wire (subscribers compare, plot, log): 0 instead.
+double finite_or_zero(double v) { return std::isfinite(v) ? v : 0.0; }
+
+void assign(std::string* out, std::string_view text) { out->assign(text.data(), text.size()); }
+
+}  // namespace
+
+std::string_view daemon_state_name(DaemonState s) {
+  switch (s) {
+    case DaemonState::kStarting:
+      return "starting";
+    case DaemonState::kRunning:
+      return "running";
+    case DaemonState::kInputLost:
+      return "input_lost";
+    case DaemonState::kInputEnded:
+      return "input_ended";
+    case DaemonState::kStopping:
+      return "stopping";
+  }
+  return "unknown";
+}
+
+void copy_counters(const SourceCounters& c, DaemonStatus* s) {
+  s->frames_received = c.received.load(std::memory_order_relaxed);
+  s->frames_decoded = c.decoded.load(std::memory_order_relaxed);
+  s->frames_unknown = c.unknown.load(std::memory_order_relaxed);
+  s->frames_malformed = c.malformed.load(std::memory_order_relaxed);
+  s->frames_dropped = c.dropped.load(std::memory_order_relaxed);
+  s->bus_errors = c.bus_errors.load(std::memory_order_relaxed);
+  s->source_reopens = c.reopens.load(std::memory_order_relaxed);
+}
+
+void to_lcm(const TickRecord& record, std::string_view estimator, vmass::mass_estimate_t* out) {
+  const Estimate& e = record.estimate;
+  out->utime = e.time_us;
+  out->tick = record.tick;
+  out->mass_known = e.mass_known;
+  out->mass_kg = finite_or_zero(e.mass_kg);
+  out->mass_std_kg = finite_or_zero(e.mass_std_kg);
+  out->mass_ci_low_kg = finite_or_zero(e.ci_low_kg);
+  out->mass_ci_high_kg = finite_or_zero(e.ci_high_kg);
+  out->mu_n = finite_or_zero(e.mu_n);
+  out->initial_mass_kg = finite_or_zero(e.initial_mass_kg);
+  assign(&out->estimator, estimator);
+  out->status = static_cast<std::int8_t>(e.status);
+  assign(&out->status_name, status_name(e.status));
+  out->reason = static_cast<std::int8_t>(e.reason);
+  assign(&out->reason_name, reason_name(e.reason));
+  out->invalid_inputs = static_cast<std::int32_t>(e.invalid_inputs);
+  out->pairs_used = e.pairs_used;
+  const BlockCounters& lon = e.blocks[static_cast<int>(Block::kLongitudinal)];
+  const BlockCounters& lat = e.blocks[static_cast<int>(Block::kLateral)];
+  out->longitudinal_ticks = lon.ticks;
+  out->longitudinal_accepted = lon.accepted;
+  out->longitudinal_rejected = lon.rejected_innovation;
+  out->longitudinal_availability = lon.availability();
+  out->lateral_ticks = lat.ticks;
+  out->lateral_accepted = lat.accepted;
+  out->lateral_rejected = lat.rejected_innovation;
+  out->lateral_availability = lat.availability();
+}
+
+void to_lcm(const PairEvent& event, Block block, TimeUs tick_us, vmass::pair_t* out) {
+  out->utime = tick_us;
+  out->block = static_cast<std::int8_t>(block);
+  assign(&out->block_name, block_name(block));
+  out->has_candidate = event.has_candidate;
+  out->accepted = event.verdict == PairVerdict::kAccepted;
+  out->verdict = static_cast<std::int8_t>(event.verdict);
+  assign(&out->verdict_name, verdict_name(event.verdict));
+  out->pair_utime = event.pair.time_us;
+  out->y_n = finite_or_zero(event.pair.y_n);
+  out->delta_accel_mps2 = finite_or_zero(event.pair.delta_accel_mps2);
+  out->weight = finite_or_zero(event.pair.weight);
+  out->predicted_y_n = finite_or_zero(event.predicted_y_n);
+  out->innovation_variance_n2 = finite_or_zero(event.innovation_variance_n2);
+  out->test_ratio = finite_or_zero(event.test_ratio);
+}
+
+void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
+  out->utime = s.last.estimate.time_us;
+  out->uptime_s = finite_or_zero(s.uptime_s);
+  out->state = static_cast<std::int8_t>(s.state);
+  assign(&out->state_name, daemon_state_name(s.state));
+  out->source = s.source;
+  out->detail = s.detail;
+  out->estimate_status = static_cast<std::int8_t>(s.last.estimate.status);
+  assign(&out->estimate_status_name, status_name(s.last.estimate.status));
+  out->mass_kg = s.last.estimate.mass_known ? finite_or_zero(s.last.estimate.mass_kg) : 0.0;
+  out->num_inputs = kInputCount;
+  out->input_name.resize(kInputCount);
+  out->input_age_s.resize(kInputCount);
+  out->input_valid.resize(kInputCount);
+  for (int i = 0; i < kInputCount; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    assign(&out->input_name[k], input_name(static_cast<Input>(i)));
+    out->input_age_s[k] = s.has_tick ? finite_or_zero(s.last.input_age_s[i]) : -1.0;
+    out->input_valid[k] = s.has_tick && (s.last.inputs_valid & input_bit(static_cast<Input>(i)));
+  }
+  out->frames_received = s.frames_received;
+  out->frames_decoded = s.frames_decoded;
+  out->frames_unknown = s.frames_unknown;
+  out->frames_malformed = s.frames_malformed;
+  out->frames_dropped = s.frames_dropped;
+  out->bus_errors = s.bus_errors;
+  out->source_reopens = s.source_reopens;
+  out->ticks = s.timing.ticks;
+  out->tick_overruns = s.timing.overruns;
+  out->ticks_skipped = s.timing.skipped;
+  out->tick_rate_hz = finite_or_zero(s.tick_rate_hz);
+  out->jitter_p50_us = finite_or_zero(s.timing.jitter_p50_us);
+  out->jitter_p99_us = finite_or_zero(s.timing.jitter_p99_us);
+  out->jitter_max_us = finite_or_zero(s.timing.jitter_max_us);
+  out->wake_latency_max_us = finite_or_zero(s.timing.wake_latency_max_us);
+  out->tick_compute_max_us = finite_or_zero(s.timing.compute_max_us);
+  out->publish_queue_drops = s.publish_queue_drops;
+  out->state_saves = s.state_saves;
+  out->state_restored = s.state_restored;
+}
+
+LcmPublisher::LcmPublisher(lcm::LCM& lcm, const LcmSettings& settings, std::string estimator_name)
+    : lcm_(lcm), settings_(settings), estimator_(std::move(estimator_name)) {
+  buffer_.resize(64 * 1024);
+  for (std::string* s : {&estimate_msg_.estimator, &estimate_msg_.status_name,
+                         &estimate_msg_.reason_name, &pair_msg_.block_name,
+                         &pair_msg_.verdict_name}) {
+    s->reserve(64);
+  }
+}
+
+template <class Msg>
+bool LcmPublisher::publish(const std::string& channel, const Msg& msg) {
+  const int size = msg.getEncodedSize();
+  if (size < 0) {
+    ++failures_;
+    return false;
+  }
+  if (static_cast<std::size_t>(size) > buffer_.size()) buffer_.resize(static_cast<std::size_t>(size));
+  if (msg.encode(buffer_.data(), 0, size) != size ||
+      lcm_.publish(channel, buffer_.data(), static_cast<unsigned int>(size)) != 0) {
+    ++failures_;
+    return false;
+  }
+  return true;
+}
+
+bool LcmPublisher::on_tick(const TickRecord& record) {
+  bool ok = true;
+  if (decimation_count_ == 0) {
+    to_lcm(record, estimator_, &estimate_msg_);
+    if (publish(settings_.estimate_channel, estimate_msg_)) {
+      ++estimates_;
+    } else {
+      ok = false;
+    }
+  }
+  decimation_count_ = (decimation_count_ + 1) % settings_.estimate_decimation;
+  if (settings_.publish_pairs) {
+    for (int b = 0; b < kBlockCount; ++b) {
+      to_lcm(record.events[static_cast<std::size_t>(b)], static_cast<Block>(b),
+             record.estimate.time_us, &pair_msg_);
+      ok = publish(settings_.pairs_channel, pair_msg_) && ok;
+    }
+  }
+  return ok;
+}
+
+bool LcmPublisher::publish_status(const DaemonStatus& status) {
+  to_lcm(status, &status_msg_);
+  return publish(settings_.status_channel, status_msg_);
+}
+
+}  // namespace vmass::service
