@@ -63,6 +63,8 @@ class TickStats {
   void on_wake(std::int64_t deadline_ns, std::int64_t wake_ns);
   /// The tick's work took compute_ns; `overrun` when the next deadline had already passed.
   void on_done(std::int64_t compute_ns, bool overrun);
+  /// A tick run without pacing (replay at maximum speed): counted, no timing.
+  void on_unpaced_tick() { ++ticks_; }
   /// Ticks given up after a long stall.
   void on_skipped(std::int64_t ticks) { skipped_ += ticks; }
 

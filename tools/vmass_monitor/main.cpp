@@ -1,0 +1,282 @@
+// vmass-monitor: a terminal view of a running vmassd over LCM, for a headless vehicle PC reached
+// over SSH: live mass, interval, status, availability and input health, redrawn in place (ANSI).
+//
+//   vmass-monitor [--config FILE] [--lcm-url URL] [--estimate-channel C] [--status-channel C]
+//                 [--once | --count N | --rates SECONDS] [--timeout SECONDS] [--plain]
+//
+//   (default)      redraw up to 5 times a second until Ctrl-C
+//   --once         print one report when an estimate and a status have arrived, then exit
+//   --count N      exit after N estimates (printing the report once at the end)
+//   --rates S      listen S seconds, then print per-channel message rates and how many fields
+//                  were not finite (exit 1 when a field was not finite or nothing arrived)
+//   --timeout S    give up (exit 1) when nothing arrived within S seconds (default 10 for
+//                  --once/--count, none otherwise)
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+#include <vmass/mass_estimate_t.hpp>
+#include <vmass/status_t.hpp>
+
+#include "vmass/config/config.hpp"
+#include "vmass/service/service_config.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+volatile std::sig_atomic_t g_stop = 0;
+void on_signal(int) { g_stop = 1; }
+
+int nonfinite(const vmass::mass_estimate_t& m) {
+  int n = 0;
+  for (double v : {m.mass_kg, m.mass_std_kg, m.mass_ci_low_kg, m.mass_ci_high_kg, m.mu_n,
+                   m.initial_mass_kg, m.longitudinal_availability, m.lateral_availability}) {
+    n += std::isfinite(v) ? 0 : 1;
+  }
+  return n;
+}
+
+int nonfinite(const vmass::status_t& s) {
+  int n = 0;
+  for (double v : {s.uptime_s, s.mass_kg, s.tick_rate_hz, s.jitter_p50_us, s.jitter_p99_us,
+                   s.jitter_max_us, s.wake_latency_max_us, s.tick_compute_max_us}) {
+    n += std::isfinite(v) ? 0 : 1;
+  }
+  for (double v : s.input_age_s) n += std::isfinite(v) ? 0 : 1;
+  return n;
+}
+
+struct ChannelStats {
+  long count = 0;
+  long nonfinite_fields = 0;
+  Clock::time_point first, last;
+  double rate_hz() const {
+    const double span = std::chrono::duration<double>(last - first).count();
+    return count > 1 && span > 0.0 ? static_cast<double>(count - 1) / span : 0.0;
+  }
+};
+
+class Monitor {
+ public:
+  void on_estimate(const lcm::ReceiveBuffer*, const std::string&,
+                   const vmass::mass_estimate_t* msg) {
+    estimate_ = *msg;
+    record(&estimates_, nonfinite(*msg));
+  }
+  void on_status(const lcm::ReceiveBuffer*, const std::string&, const vmass::status_t* msg) {
+    status_ = *msg;
+    record(&statuses_, nonfinite(*msg));
+  }
+
+  std::string report(const std::string& url) const {
+    std::string out;
+    char line[512];
+    std::snprintf(line, sizeof line, "vmass-monitor  %s   estimates %.1f Hz, status %.2f Hz\n",
+                  url.c_str(), estimates_.rate_hz(), statuses_.rate_hz());
+    out += line;
+    if (estimate_) {
+      const vmass::mass_estimate_t& e = *estimate_;
+      if (e.mass_known) {
+        std::snprintf(line, sizeof line,
+                      "mass      %8.1f kg   95%% [%.1f, %.1f] kg   std %.1f kg   mu %.1f N\n",
+                      e.mass_kg, e.mass_ci_low_kg, e.mass_ci_high_kg, e.mass_std_kg, e.mu_n);
+      } else {
+        std::snprintf(line, sizeof line, "mass      (not known yet)\n");
+      }
+      out += line;
+      std::snprintf(line, sizeof line,
+                    "status    %s (%s)   estimator %s   initial %.1f kg   pairs %lld   t %.2f s\n",
+                    e.status_name.c_str(), e.reason_name.c_str(), e.estimator.c_str(),
+                    e.initial_mass_kg, static_cast<long long>(e.pairs_used),
+                    static_cast<double>(e.utime) * 1e-6);
+      out += line;
+      std::snprintf(line, sizeof line,
+                    "available longitudinal %5.1f %% (%lld pairs, %lld rejected)   "
+                    "lateral %5.1f %% (%lld pairs, %lld rejected)\n",
+                    100.0 * e.longitudinal_availability,
+                    static_cast<long long>(e.longitudinal_accepted),
+                    static_cast<long long>(e.longitudinal_rejected),
+                    100.0 * e.lateral_availability, static_cast<long long>(e.lateral_accepted),
+                    static_cast<long long>(e.lateral_rejected));
+      out += line;
+    } else {
+      out += "mass      (no estimate received)\n";
+    }
+    if (status_) {
+      const vmass::status_t& s = *status_;
+      std::snprintf(line, sizeof line, "daemon    %s   up %.0f s   input %s%s%s\n",
+                    s.state_name.c_str(), s.uptime_s, s.source.c_str(),
+                    s.detail.empty() ? "" : ": ", s.detail.c_str());
+      out += line;
+      std::snprintf(line, sizeof line,
+                    "ticks     %lld at %.0f Hz   overruns %lld   skipped %lld   jitter p50/p99/max "
+                    "%.0f/%.0f/%.0f us   queue drops %lld\n",
+                    static_cast<long long>(s.ticks), s.tick_rate_hz,
+                    static_cast<long long>(s.tick_overruns),
+                    static_cast<long long>(s.ticks_skipped), s.jitter_p50_us, s.jitter_p99_us,
+                    s.jitter_max_us, static_cast<long long>(s.publish_queue_drops));
+      out += line;
+      std::snprintf(line, sizeof line,
+                    "frames    %lld received, %lld decoded, %lld unknown, %lld malformed, "
+                    "%lld dropped, %lld bus errors, %lld reopens\n",
+                    static_cast<long long>(s.frames_received),
+                    static_cast<long long>(s.frames_decoded),
+                    static_cast<long long>(s.frames_unknown),
+                    static_cast<long long>(s.frames_malformed),
+                    static_cast<long long>(s.frames_dropped),
+                    static_cast<long long>(s.bus_errors),
+                    static_cast<long long>(s.source_reopens));
+      out += line;
+      out += "inputs   ";
+      for (int i = 0; i < s.num_inputs; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        if (s.input_age_s[k] < 0.0) {
+          std::snprintf(line, sizeof line, " %s: never%s", s.input_name[k].c_str(),
+                        i + 1 < s.num_inputs ? "," : "");
+        } else {
+          std::snprintf(line, sizeof line, " %s: %s %.0f ms%s", s.input_name[k].c_str(),
+                        s.input_valid[k] ? "ok" : "INVALID", s.input_age_s[k] * 1e3,
+                        i + 1 < s.num_inputs ? "," : "");
+        }
+        out += line;
+        if (i % 3 == 2 && i + 1 < s.num_inputs) out += "\n         ";
+      }
+      out += "\n";
+    } else {
+      out += "daemon    (no status received)\n";
+    }
+    return out;
+  }
+
+  const ChannelStats& estimates() const { return estimates_; }
+  const ChannelStats& statuses() const { return statuses_; }
+  bool complete() const { return estimate_.has_value() && status_.has_value(); }
+
+ private:
+  static void record(ChannelStats* c, int bad) {
+    const Clock::time_point now = Clock::now();
+    if (c->count == 0) c->first = now;
+    c->last = now;
+    ++c->count;
+    c->nonfinite_fields += bad;
+  }
+
+  std::optional<vmass::mass_estimate_t> estimate_;
+  std::optional<vmass::status_t> status_;
+  ChannelStats estimates_, statuses_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vmass-monitor: live view of vmassd's LCM output in a terminal"};
+  std::string config_path, url, estimate_channel, status_channel;
+  bool once = false, plain = false;
+  long count = 0;
+  double rates_s = 0.0, timeout_s = -1.0;
+  app.add_option("--config", config_path, "vmass config (for its lcm: URL and channel names)");
+  app.add_option("--lcm-url", url, "LCM URL (default: the config's, else LCM's default)");
+  app.add_option("--estimate-channel", estimate_channel, "default VMASS_ESTIMATE");
+  app.add_option("--status-channel", status_channel, "default VMASS_STATUS");
+  auto* once_opt = app.add_flag("--once", once, "print one report and exit");
+  auto* count_opt = app.add_option("--count", count, "exit after N estimates")
+                        ->check(CLI::PositiveNumber);
+  auto* rates_opt = app.add_option("--rates", rates_s,
+                                   "listen this many seconds, print message rates, exit")
+                        ->check(CLI::PositiveNumber);
+  app.add_option("--timeout", timeout_s, "exit 1 when nothing arrives within this many seconds");
+  app.add_flag("--plain", plain, "no ANSI redraw (default when stdout is not a terminal)");
+  once_opt->excludes(count_opt)->excludes(rates_opt);
+  count_opt->excludes(rates_opt);
+  CLI11_PARSE(app, argc, argv);
+
+  vmass::service::LcmSettings lcm_settings;
+  if (!config_path.empty()) {
+    vmass::ConfigLoad loaded = vmass::load_config(config_path);
+    if (!loaded.ok()) {
+      std::fprintf(stderr, "vmass-monitor: %s\n", loaded.error.c_str());
+      return 2;
+    }
+    const auto settings = vmass::service::load_service_settings(*loaded.config);
+    if (!settings.ok()) {
+      std::fprintf(stderr, "vmass-monitor: %s\n", settings.error.c_str());
+      return 2;
+    }
+    lcm_settings = settings.settings.lcm;
+  }
+  if (!url.empty()) lcm_settings.url = url;
+  if (!estimate_channel.empty()) lcm_settings.estimate_channel = estimate_channel;
+  if (!status_channel.empty()) lcm_settings.status_channel = status_channel;
+  const bool batch = once || count > 0 || rates_s > 0.0;
+  if (timeout_s < 0.0 && (once || count > 0)) timeout_s = 10.0;
+  const bool ansi = !plain && !batch && ::isatty(STDOUT_FILENO);
+
+  lcm::LCM lcm(lcm_settings.url);
+  if (!lcm.good()) {
+    std::fprintf(stderr, "vmass-monitor: cannot open LCM at '%s'\n", lcm_settings.url.c_str());
+    return 1;
+  }
+  Monitor monitor;
+  lcm.subscribe(lcm_settings.estimate_channel, &Monitor::on_estimate, &monitor);
+  lcm.subscribe(lcm_settings.status_channel, &Monitor::on_status, &monitor);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  const Clock::time_point start = Clock::now();
+  Clock::time_point next_draw = start;
+  if (ansi) std::fputs("\x1b[2J", stdout);
+  while (!g_stop) {
+    lcm.handleTimeout(50);
+    const Clock::time_point now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start).count();
+    if (rates_s > 0.0 && elapsed >= rates_s) break;
+    if (once && monitor.complete()) break;
+    if (count > 0 && monitor.estimates().count >= count) break;
+    if (timeout_s > 0.0 && elapsed >= timeout_s && monitor.estimates().count == 0 &&
+        monitor.statuses().count == 0) {
+      std::fprintf(stderr, "vmass-monitor: nothing received on %s / %s within %.1f s\n",
+                   lcm_settings.estimate_channel.c_str(), lcm_settings.status_channel.c_str(),
+                   timeout_s);
+      return 1;
+    }
+    if (timeout_s > 0.0 && elapsed >= timeout_s && (once || count > 0)) {
+      std::fprintf(stderr, "vmass-monitor: timed out after %.1f s\n", timeout_s);
+      std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);
+      return 1;
+    }
+    if (!batch && now >= next_draw) {
+      const std::string text = monitor.report(lcm_settings.url);
+      if (ansi) {
+        // Home, each line cleared to its end, then clear whatever is below.
+        std::string screen = "\x1b[H";
+        for (char c : text) screen += c == '\n' ? std::string("\x1b[K\n") : std::string(1, c);
+        screen += "\x1b[J";
+        std::fputs(screen.c_str(), stdout);
+      } else {
+        std::fputs((text + "\n").c_str(), stdout);
+      }
+      std::fflush(stdout);
+      next_draw = now + (ansi ? std::chrono::milliseconds(200) : std::chrono::seconds(1));
+    }
+  }
+  if (rates_s > 0.0) {
+    const ChannelStats& e = monitor.estimates();
+    const ChannelStats& s = monitor.statuses();
+    std::printf("%s messages=%ld rate_hz=%.3f nonfinite_fields=%ld\n",
+                lcm_settings.estimate_channel.c_str(), e.count, e.rate_hz(), e.nonfinite_fields);
+    std::printf("%s messages=%ld rate_hz=%.3f nonfinite_fields=%ld\n",
+                lcm_settings.status_channel.c_str(), s.count, s.rate_hz(), s.nonfinite_fields);
+    const bool ok = e.count > 0 && s.count > 0 && e.nonfinite_fields == 0 &&
+                    s.nonfinite_fields == 0;
+    return ok ? 0 : 1;
+  }
+  if (batch) std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);
+  return 0;
+}

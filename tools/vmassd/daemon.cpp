@@ -1,0 +1,633 @@
+#include "daemon.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+#include <semaphore.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+
+#include <lcm/lcm-cpp.hpp>
+#include <spdlog/spdlog.h>
+
+#include "vmass/can/dbc.hpp"
+#include "vmass/service/can_input_source.hpp"
+#include "vmass/service/estimator_loop.hpp"
+#include "vmass/service/lcm_publisher.hpp"
+#include "vmass/service/samples_csv_source.hpp"
+#include "vmass/service/seqlock.hpp"
+#include "vmass/service/spsc_queue.hpp"
+#include "vmass/service/state_store.hpp"
+#include "vmass/service/systemd_notifier.hpp"
+#include "vmass/service/tick_stats.hpp"
+
+namespace vmassd {
+namespace {
+
+using vmass::TimeUs;
+namespace svc = vmass::service;
+
+constexpr std::int64_t kNsPerSecond = 1'000'000'000;
+constexpr std::int64_t kPollNs = 100'000'000;  // longest uninterrupted wait: 100 ms
+
+std::int64_t mono_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerSecond + ts.tv_nsec;
+}
+
+TimeUs realtime_us() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return static_cast<TimeUs>(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000;
+}
+
+timespec to_timespec(std::int64_t ns) {
+  timespec ts{};
+  ts.tv_sec = static_cast<time_t>(ns / kNsPerSecond);
+  ts.tv_nsec = static_cast<long>(ns % kNsPerSecond);
+  return ts;
+}
+
+/// Absolute sleep on CLOCK_MONOTONIC until deadline_ns, in slices of at most 100 ms so that a
+/// stop request is seen. Returns false when stopped first.
+bool sleep_until(std::int64_t deadline_ns, const std::atomic<bool>& stop) {
+  while (!stop.load(std::memory_order_relaxed)) {
+    const std::int64_t now = mono_ns();
+    if (now >= deadline_ns) return true;
+    const std::int64_t until = std::min(deadline_ns, now + kPollNs);
+    const timespec ts = to_timespec(until);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    }
+  }
+  return false;
+}
+
+struct SnapshotSlot {
+  vmass::PipelineSnapshot snapshot;
+  TimeUs time_us = 0;
+  bool valid = false;
+};
+
+/// Everything the threads share. Allocated once at start-up.
+struct Shared {
+  explicit Shared(std::size_t queue_capacity) : queue(queue_capacity) {
+    sem_init(&queue_sem, 0, 0);
+  }
+  ~Shared() { sem_destroy(&queue_sem); }
+
+  std::atomic<bool> stop{false};            ///< main -> receive, estimator
+  std::atomic<bool> stop_publisher{false};  ///< main -> publisher (after the estimator joined)
+  std::atomic<bool> estimator_done{false};  ///< a recording was played to its end
+  svc::SeqLock<svc::InputValues> table;     ///< receive -> estimator
+  svc::SpscQueue<svc::TickRecord> queue;    ///< estimator -> publisher
+  sem_t queue_sem;
+  std::atomic<std::int64_t> queue_drops{0};
+  svc::SeqLock<svc::TickRecord> latest;          ///< estimator -> main, publisher (status)
+  svc::SeqLock<svc::TickTimingSummary> timing;   ///< estimator -> status
+  svc::SeqLock<SnapshotSlot> snapshot;           ///< estimator -> main (persistence)
+  std::atomic<std::int64_t> heartbeat{0};        ///< ticks run (watchdog evidence)
+  std::atomic<std::int64_t> state_saves{0};
+  std::atomic<bool> input_ended{false};
+};
+
+/// The fixed parameters of a run.
+struct Plan {
+  bool recorded = false;
+  bool max_speed = false;
+  double speed = 1.0;
+  double tick_rate_hz = 100.0;
+  TimeUs tick_us = 10'000;      ///< tick period in the input's clock (as TickResampler)
+  std::int64_t period_ns = 0;   ///< wall-clock period of the loop
+  TimeUs t0_us = 0;             ///< time of tick 0 (input clock)
+  std::int64_t mono0_ns = 0;    ///< CLOCK_MONOTONIC of tick 0
+  bool has_first_record = false;
+  int snapshot_every_ticks = 10;
+  svc::RealtimeSettings realtime;
+};
+
+void apply_realtime(const svc::RealtimeSettings& rt) {
+  if (!rt.cpu_affinity.empty()) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    for (int cpu : rt.cpu_affinity) CPU_SET(static_cast<unsigned>(cpu), &set);
+    const int err = pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+    if (err != 0) {
+      spdlog::warn("daemon.realtime.cpu_affinity: cannot pin the estimator thread ({}); running "
+                   "unpinned", std::strerror(err));
+    }
+  }
+  if (rt.priority > 0) {
+    sched_param param{};
+    param.sched_priority = rt.priority;
+    const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+    if (err != 0) {
+      spdlog::warn("daemon.realtime.priority: SCHED_FIFO {} refused ({}); running with normal "
+                   "scheduling (grant LimitRTPRIO= or CPUSchedulingPolicy=fifo)",
+                   rt.priority, std::strerror(err));
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------- receive thread
+
+void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) {
+  svc::InputValues values;
+  if (plan.recorded) {
+    if (!plan.has_first_record) {
+      shared.input_ended.store(true);
+      return;
+    }
+    // The first record is already fetched (its time is T_0). Pace records by log time.
+    for (;;) {
+      const std::int64_t due =
+          plan.mono0_ns + static_cast<std::int64_t>(
+                              static_cast<double>(source.record_time_us() - plan.t0_us) * 1000.0 /
+                              plan.speed);
+      if (!sleep_until(due, shared.stop)) return;
+      source.apply(&values);
+      shared.table.write(values);
+      if (source.read(0) != svc::InputSource::Read::kRecord) break;
+    }
+    shared.input_ended.store(true);
+    return;
+  }
+  while (!shared.stop.load(std::memory_order_relaxed)) {
+    switch (source.read(100)) {
+      case svc::InputSource::Read::kRecord:
+        source.apply(&values);
+        shared.table.write(values);
+        break;
+      case svc::InputSource::Read::kTimeout:
+        break;
+      case svc::InputSource::Read::kDown:
+      case svc::InputSource::Read::kEnd:
+        // The source waits / re-opens with backoff inside read(); never give up.
+        sleep_until(mono_ns() + 10'000'000, shared.stop);
+        break;
+    }
+  }
+}
+
+// --------------------------------------------------------------------------- estimator thread
+
+void publish_record(const svc::TickRecord& record, Shared& shared, bool block) {
+  while (!shared.queue.push(record)) {
+    if (!block || shared.stop.load(std::memory_order_relaxed)) {
+      shared.queue_drops.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  sem_post(&shared.queue_sem);
+}
+
+void after_tick(const svc::TickRecord& record, svc::EstimatorLoop& loop, Shared& shared,
+                const Plan& plan, svc::TickStats& stats, std::int64_t k) {
+  publish_record(record, shared, plan.max_speed);
+  shared.latest.write(record);
+  shared.heartbeat.store(k + 1, std::memory_order_release);
+  if (k % plan.snapshot_every_ticks == 0) {
+    shared.snapshot.write(SnapshotSlot{loop.pipeline().snapshot(), record.estimate.time_us, true});
+  }
+  if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz)) == 0) {
+    shared.timing.write(stats.summary());
+  }
+}
+
+void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared& shared,
+                      const Plan& plan) {
+  apply_realtime(plan.realtime);
+  svc::TickStats stats(plan.period_ns);
+  std::int64_t k = 0;
+
+  if (plan.max_speed) {
+    // Log time: apply every record stamped <= T_k, then tick; stop after the last record.
+    svc::InputValues values;
+    bool pending = plan.has_first_record;
+    TimeUs last_applied_us = 0;
+    while (pending && !shared.stop.load(std::memory_order_relaxed)) {
+      const TimeUs t = plan.t0_us + k * plan.tick_us;
+      while (pending && source.record_time_us() <= t) {
+        last_applied_us = source.record_time_us();
+        source.apply(&values);
+        pending = source.read(0) == svc::InputSource::Read::kRecord;
+      }
+      const std::int64_t start = mono_ns();
+      stats.on_unpaced_tick();
+      const svc::TickRecord& record = loop.tick(k, t, values);
+      stats.on_done(mono_ns() - start, false);
+      after_tick(record, loop, shared, plan, stats, k);
+      ++k;
+      if (!pending && plan.t0_us + k * plan.tick_us > last_applied_us) break;
+    }
+    shared.input_ended.store(true);
+  } else {
+    const std::int64_t max_behind_ticks =
+        std::max<std::int64_t>(1, static_cast<std::int64_t>(kNsPerSecond / plan.period_ns));
+    TimeUs last_record_us = 0;
+    bool has_record = false;
+    while (!shared.stop.load(std::memory_order_relaxed)) {
+      const std::int64_t deadline = plan.mono0_ns + k * plan.period_ns;
+      if (!sleep_until(deadline, shared.stop)) break;
+      const std::int64_t wake = mono_ns();
+      stats.on_wake(deadline, wake);
+      const svc::InputValues values = shared.table.read();
+      const TimeUs t = plan.t0_us + k * plan.tick_us;
+      if (plan.recorded) {
+        // A finished recording: tick up to its last record, as offline replay does.
+        if (values.updates > 0) {
+          last_record_us = values.last_update_us;
+          has_record = true;
+        }
+        if (shared.input_ended.load(std::memory_order_acquire)) {
+          const svc::InputValues final_values = shared.table.read();
+          if (final_values.updates > 0) last_record_us = final_values.last_update_us;
+          if (!has_record || t > last_record_us) break;
+        }
+      }
+      const svc::TickRecord& record = loop.tick(k, t, values);
+      const std::int64_t done = mono_ns();
+      ++k;
+      const std::int64_t next_deadline = plan.mono0_ns + k * plan.period_ns;
+      stats.on_done(done - wake, done > next_deadline);
+      after_tick(record, loop, shared, plan, stats, k - 1);
+      // A long stall (suspend, debugger): give the missed ticks up, counted, after 1 s.
+      const std::int64_t behind = (mono_ns() - next_deadline) / plan.period_ns;
+      if (behind > max_behind_ticks) {
+        k += behind;
+        stats.on_skipped(behind);
+      }
+    }
+  }
+  // Final state for the main thread (status, persistence).
+  shared.timing.write(stats.summary());
+  shared.snapshot.write(
+      SnapshotSlot{loop.pipeline().snapshot(), loop.last().estimate.time_us, k > 0});
+  shared.estimator_done.store(plan.recorded && shared.input_ended.load());
+}
+
+// --------------------------------------------------------------------------- status and publisher
+
+struct StatusContext {
+  const svc::InputSource* source = nullptr;
+  std::string source_name;
+  double tick_rate_hz = 100.0;
+  std::int64_t start_mono_ns = 0;
+  bool state_restored = false;
+};
+
+svc::DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stopping) {
+  svc::DaemonStatus s;
+  s.source = ctx.source_name;
+  s.tick_rate_hz = ctx.tick_rate_hz;
+  s.uptime_s = static_cast<double>(mono_ns() - ctx.start_mono_ns) * 1e-9;
+  s.has_tick = shared.heartbeat.load(std::memory_order_acquire) > 0;
+  if (s.has_tick) s.last = shared.latest.read();
+  svc::copy_counters(ctx.source->counters(), &s);
+  s.timing = shared.timing.read();
+  s.timing.ticks = shared.heartbeat.load(std::memory_order_acquire);  // fresher than the summary
+  s.publish_queue_drops = shared.queue_drops.load(std::memory_order_relaxed);
+  s.state_saves = shared.state_saves.load(std::memory_order_relaxed);
+  s.state_restored = ctx.state_restored;
+  const svc::SourceHealth health = ctx.source->health();
+  s.detail = health.detail;
+  if (stopping) {
+    s.state = svc::DaemonState::kStopping;
+  } else if (health.state == svc::SourceState::kDown) {
+    s.state = svc::DaemonState::kInputLost;
+  } else if (health.state == svc::SourceState::kEnded ||
+             shared.input_ended.load(std::memory_order_relaxed)) {
+    s.state = svc::DaemonState::kInputEnded;
+  } else {
+    s.state = s.has_tick ? svc::DaemonState::kRunning : svc::DaemonState::kStarting;
+  }
+  return s;
+}
+
+void publisher_thread(svc::LcmPublisher& publisher, Shared& shared, const StatusContext& ctx,
+                      double status_period_s) {
+  const auto period_ns = static_cast<std::int64_t>(status_period_s * 1e9);
+  std::int64_t next_status = mono_ns() + period_ns;
+  svc::TickRecord record;
+  for (;;) {
+    const std::int64_t wait_until = std::min(next_status, mono_ns() + kPollNs);
+    const timespec ts = to_timespec(wait_until);
+    sem_clockwait(&shared.queue_sem, CLOCK_MONOTONIC, &ts);
+    while (shared.queue.pop(&record)) publisher.on_tick(record);
+    const std::int64_t now = mono_ns();
+    if (now >= next_status) {
+      publisher.publish_status(gather_status(ctx, shared, false));
+      next_status += period_ns;
+      if (next_status <= now) next_status = now + period_ns;
+    }
+    if (shared.stop_publisher.load(std::memory_order_acquire)) {
+      while (shared.queue.pop(&record)) publisher.on_tick(record);
+      return;
+    }
+  }
+}
+
+std::string summary_line(const svc::DaemonStatus& s) {
+  char buf[256];
+  const vmass::Estimate& e = s.last.estimate;
+  if (s.has_tick && e.mass_known) {
+    std::snprintf(buf, sizeof buf, "%s: %.0f kg [%.0f, %.0f] %s; %s %s; %lld ticks, %lld overruns",
+                  std::string(svc::daemon_state_name(s.state)).c_str(), e.mass_kg, e.ci_low_kg,
+                  e.ci_high_kg, std::string(vmass::status_name(e.status)).c_str(),
+                  s.source.c_str(), s.detail.empty() ? "ok" : s.detail.c_str(),
+                  static_cast<long long>(s.timing.ticks),
+                  static_cast<long long>(s.timing.overruns));
+  } else {
+    std::snprintf(buf, sizeof buf, "%s: no mass yet (%s); %s %s; %lld ticks",
+                  std::string(svc::daemon_state_name(s.state)).c_str(),
+                  s.has_tick ? std::string(vmass::reason_name(e.reason)).c_str() : "no tick",
+                  s.source.c_str(), s.detail.empty() ? "ok" : s.detail.c_str(),
+                  static_cast<long long>(s.timing.ticks));
+  }
+  return buf;
+}
+
+bool save_snapshot(const std::string& path, const SnapshotSlot& slot, std::uint64_t fingerprint,
+                   Shared& shared) {
+  if (path.empty() || !slot.valid || !slot.snapshot.has_prior) return false;
+  svc::SavedState state;
+  state.snapshot = slot.snapshot;
+  state.saved_time_us = slot.time_us;
+  state.fingerprint = fingerprint;
+  std::string error;
+  if (!svc::save_state_file(path, state, &error)) {
+    spdlog::warn("state not saved: {}", error);
+    return false;
+  }
+  shared.state_saves.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+}  // namespace
+
+int run(const Options& options) {
+  const std::int64_t start_mono = mono_ns();
+  // ------------------------------------------------------------------ configuration
+  vmass::ConfigLoad loaded = vmass::load_config(options.config_path);
+  if (!loaded.ok()) {
+    spdlog::error("{}", loaded.error);
+    return 2;
+  }
+  const vmass::Config& config = *loaded.config;
+  svc::ServiceSettingsLoad settings_load = svc::load_service_settings(config);
+  if (!settings_load.ok()) {
+    spdlog::error("{}", settings_load.error);
+    return 2;
+  }
+  svc::ServiceSettings settings = settings_load.settings;
+  if (!options.lcm_url.empty()) settings.lcm.url = options.lcm_url;
+  const vmass::PipelineParams& params = config.pipeline;
+
+  Plan plan;
+  plan.tick_rate_hz = params.estimator.differencing.tick_rate_hz;
+  plan.tick_us = vmass::from_seconds(1.0 / plan.tick_rate_hz);
+  plan.realtime = settings.daemon.realtime;
+  const bool recorded = !options.replay_log.empty() || !options.samples_csv.empty();
+  if (!recorded && options.speed != "1") {
+    spdlog::error("--speed applies to --replay and --samples only");
+    return 2;
+  }
+  if (options.speed == "max") {
+    plan.max_speed = true;
+  } else {
+    char* end = nullptr;
+    plan.speed = std::strtod(options.speed.c_str(), &end);
+    if (end == options.speed.c_str() || *end != '\0' || !(plan.speed > 0.0) ||
+        !(plan.speed <= 1000.0)) {
+      spdlog::error("--speed: expected a factor in (0, 1000] or 'max', got '{}'", options.speed);
+      return 2;
+    }
+  }
+  plan.recorded = recorded;
+  plan.period_ns = static_cast<std::int64_t>(
+      std::llround(1e9 / (plan.tick_rate_hz * (plan.max_speed ? 1.0 : plan.speed))));
+  const double persist_ticks = settings.daemon.persist_interval_s * plan.tick_rate_hz / 10.0;
+  plan.snapshot_every_ticks = static_cast<int>(std::clamp(persist_ticks, 1.0, 100.0));
+
+  if (settings.daemon.realtime.lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    spdlog::warn("daemon.realtime.lock_memory: mlockall failed ({}); memory may be paged "
+                 "(grant LimitMEMLOCK=infinity)", std::strerror(errno));
+  }
+
+  // ------------------------------------------------------------------ input
+  std::optional<vmass::can::Decoder> decoder;
+  std::unique_ptr<svc::InputSource> source;
+  std::string error;
+  if (!options.samples_csv.empty()) {
+    const double timeout_s = settings.daemon.input_timeout_s > 0.0
+                                 ? settings.daemon.input_timeout_s
+                                 : 5.0 / plan.tick_rate_hz;  // as vmass-replay
+    source = svc::SamplesCsvSource::open(options.samples_csv, timeout_s, &error);
+    if (!source) {
+      spdlog::error("{}", error);
+      return 1;
+    }
+  } else {
+    if (settings.dbc_path.empty()) {
+      spdlog::error("{}: can.dbc: required to decode CAN frames", config.file);
+      return 2;
+    }
+    vmass::can::DbcParseResult dbc = vmass::can::load_dbc_file(settings.dbc_path);
+    for (const vmass::can::DbcDiagnostic& d : dbc.diagnostics) {
+      if (d.severity == vmass::can::Severity::kError) spdlog::error("{}", d.to_string());
+    }
+    if (!dbc.ok()) {
+      spdlog::error("{}: cannot load the DBC file ({} errors)", settings.dbc_path,
+                    dbc.error_count());
+      return 1;
+    }
+    if (dbc.warning_count() > 0) {
+      spdlog::info("{}: {} format deviations tolerated (vmass-can check lists them)",
+                   settings.dbc_path, dbc.warning_count());
+    }
+    decoder = vmass::can::Decoder::compile(std::move(dbc.database), &error);
+    if (!decoder) {
+      spdlog::error("{}: {}", settings.dbc_path, error);
+      return 1;
+    }
+    std::unique_ptr<svc::FrameSource> frames;
+    if (!options.replay_log.empty()) {
+      frames = svc::CandumpFrameSource::open(options.replay_log, &error);
+    } else {
+      vmass::can::SocketCanOptions can_options;
+      can_options.interface =
+          options.can_interface.empty() ? settings.daemon.can_interface : options.can_interface;
+      can_options.filters = vmass::can::filters_for(decoder->database());
+      const std::string invalid = can_options.validate();
+      if (!invalid.empty()) {
+        spdlog::error("{}", invalid);
+        return 2;
+      }
+      frames = svc::SocketCanFrameSource::open(can_options, &error);
+    }
+    if (!frames) {
+      spdlog::error("{}", error);
+      return 1;
+    }
+    // TODO(signal table): replace DecodeOnlyMapper by the can.inputs signal mapping.
+    spdlog::warn("CAN signal mapping (can.inputs) is not wired yet: frames are decoded and "
+                 "counted, every estimator input stays invalid");
+    source = std::make_unique<svc::CanInputSource>(
+        std::move(frames), std::make_unique<svc::DecodeOnlyMapper>(*decoder));
+  }
+
+  // ------------------------------------------------------------------ LCM and state
+  lcm::LCM lcm(settings.lcm.url);
+  if (!lcm.good()) {
+    spdlog::error("cannot open LCM at '{}'", settings.lcm.url);
+    return 1;
+  }
+  svc::EstimatorLoop loop(params, source->timeouts());
+
+  std::string state_path = options.state_file.empty() ? settings.daemon.state_file
+                                                      : options.state_file;
+  if (state_path.empty()) {
+    const char* dir = std::getenv("STATE_DIRECTORY");  // systemd StateDirectory=
+    if (dir != nullptr && dir[0] != '\0') {
+      std::string first(dir);
+      first = first.substr(0, first.find(':'));
+      state_path = first + "/vmassd.state";
+    }
+  }
+  const std::uint64_t fingerprint = svc::state_fingerprint(params);
+  bool restored = false;
+  if (!state_path.empty() && !options.no_restore) {
+    const svc::StateLoad state = svc::load_state_file(state_path, fingerprint);
+    if (state.status == svc::StateLoadStatus::kLoaded) {
+      restored = loop.pipeline().restore(state.state.snapshot);
+      if (restored) {
+        spdlog::info("restored {} estimate {:.1f} kg from {} ({} pairs); a standstill will "
+                     "re-check the load", vmass::regressor_type_name(params.estimator.type),
+                     loop.pipeline().estimate().mass_kg, state_path,
+                     state.state.snapshot.pairs_used);
+      } else {
+        spdlog::warn("{}: saved state refused by the estimator; starting fresh", state_path);
+      }
+    } else if (state.status == svc::StateLoadStatus::kRejected) {
+      spdlog::warn("{}; starting fresh", state.error);
+    }
+  }
+
+  // ------------------------------------------------------------------ start
+  if (plan.recorded) {
+    plan.has_first_record = source->read(0) == svc::InputSource::Read::kRecord;
+    plan.t0_us = plan.has_first_record ? source->record_time_us() : 0;
+    if (!plan.has_first_record) spdlog::warn("{}: no records", source->describe());
+  } else {
+    plan.t0_us = realtime_us();
+  }
+
+  // Signals: handled by the main thread only (blocked everywhere, taken with sigtimedwait).
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGHUP);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  ::signal(SIGPIPE, SIG_IGN);
+
+  Shared shared(static_cast<std::size_t>(settings.daemon.publish_queue));
+  StatusContext ctx;
+  ctx.source = source.get();
+  ctx.source_name = source->describe();
+  ctx.tick_rate_hz = plan.tick_rate_hz;
+  ctx.start_mono_ns = start_mono;
+  ctx.state_restored = restored;
+  svc::LcmPublisher publisher(lcm, settings.lcm,
+                              std::string(loop.pipeline().regressor().name()));
+
+  plan.mono0_ns = mono_ns() + 1'000'000;  // first tick 1 ms from now
+  std::thread publisher_worker(publisher_thread, std::ref(publisher), std::ref(shared),
+                               std::cref(ctx), settings.lcm.status_period_s);
+  std::thread estimator_worker(estimator_thread, std::ref(*source), std::ref(loop),
+                               std::ref(shared), std::cref(plan));
+  std::thread receive_worker;
+  if (!plan.max_speed) {
+    receive_worker = std::thread(receive_thread, std::ref(*source), std::ref(shared),
+                                 std::cref(plan));
+  }
+
+  svc::SystemdNotifier notifier;
+  notifier.notify("READY=1\nSTATUS=" + summary_line(gather_status(ctx, shared, false)));
+  spdlog::info("vmassd running: input {}, {} estimator at {} Hz{}, LCM {}{}", ctx.source_name,
+               loop.pipeline().regressor().name(), plan.tick_rate_hz,
+               plan.recorded ? (plan.max_speed ? std::string(", speed max (log time)")
+                                               : ", speed " + options.speed)
+                             : std::string(),
+               settings.lcm.url,
+               state_path.empty() ? std::string(", no state file") : ", state " + state_path);
+  if (notifier.watchdog_usec() > 0) {
+    spdlog::info("systemd watchdog {} ms: pinging every {} ms while the estimator ticks",
+                 notifier.watchdog_usec() / 1000, notifier.watchdog_ping_interval_usec() / 1000);
+  }
+
+  // ------------------------------------------------------------------ main loop
+  const auto persist_ns = static_cast<std::int64_t>(settings.daemon.persist_interval_s * 1e9);
+  std::int64_t next_persist = mono_ns() + persist_ns;
+  std::int64_t next_status = mono_ns() + kNsPerSecond;
+  std::int64_t heartbeat_at_ping = -1;
+  const timespec poll = to_timespec(kPollNs);
+  int stop_signal = 0;
+  for (;;) {
+    siginfo_t info{};
+    const int sig = sigtimedwait(&signals, &info, &poll);
+    if (sig == SIGTERM || sig == SIGINT) {
+      stop_signal = sig;
+      break;
+    }
+    if (sig == SIGHUP) spdlog::info("SIGHUP ignored: restart the service to reload the config");
+    if (shared.estimator_done.load(std::memory_order_acquire)) break;
+    const std::int64_t now = mono_ns();
+    const std::int64_t heartbeat = shared.heartbeat.load(std::memory_order_acquire);
+    if (heartbeat != heartbeat_at_ping &&
+        notifier.watchdog_due(static_cast<std::uint64_t>(now / 1000))) {
+      notifier.watchdog();
+      notifier.watchdog_sent(static_cast<std::uint64_t>(now / 1000));
+      heartbeat_at_ping = heartbeat;
+    }
+    if (now >= next_status) {
+      notifier.status(summary_line(gather_status(ctx, shared, false)));
+      next_status = now + kNsPerSecond;
+    }
+    if (now >= next_persist) {
+      save_snapshot(state_path, shared.snapshot.read(), fingerprint, shared);
+      next_persist = now + persist_ns;
+    }
+  }
+
+  // ------------------------------------------------------------------ orderly stop
+  if (stop_signal != 0) spdlog::info("{}: stopping", strsignal(stop_signal));
+  notifier.notify("STOPPING=1\nSTATUS=stopping");
+  shared.stop.store(true);
+  if (receive_worker.joinable()) receive_worker.join();
+  estimator_worker.join();
+  shared.stop_publisher.store(true, std::memory_order_release);
+  sem_post(&shared.queue_sem);
+  publisher_worker.join();
+  const bool saved = save_snapshot(state_path, shared.snapshot.read(), fingerprint, shared);
+  const svc::DaemonStatus final_status = gather_status(ctx, shared, true);
+  publisher.publish_status(final_status);
+  spdlog::info("stopped: {}{}; {} estimates published, {} queue drops, jitter p50/p99/max "
+               "{:.0f}/{:.0f}/{:.0f} us", summary_line(final_status),
+               saved ? ", state saved" : "", publisher.estimates_published(),
+               final_status.publish_queue_drops, final_status.timing.jitter_p50_us,
+               final_status.timing.jitter_p99_us, final_status.timing.jitter_max_us);
+  return 0;
+}
+
+}  // namespace vmassd

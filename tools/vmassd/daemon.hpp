@@ -1,0 +1,47 @@
+// vmassd's threads around the vmass_service pieces.
+//
+//   receive thread    InputSource::read/apply -> SeqLock<InputValues>   (live bus, or a
+//                     recording paced by its log time / speed)
+//   estimator thread  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME) at tick_rate * speed;
+//                     sample_at + Pipeline::step; TickRecord -> SpscQueue; overruns counted
+//   publisher thread  SpscQueue -> LCM (VMASS_ESTIMATE, VMASS_PAIRS); VMASS_STATUS periodically
+//   main thread       signals (sigtimedwait), sd_notify READY/STATUS/WATCHDOG/STOPPING, state
+//                     persistence, orderly shutdown (final status, final save)
+//
+// With `--speed max` there is no receive thread: the estimator thread reads the recording
+// itself and ticks in log time (T_k = T_0 + k / tick_rate), applying every record stamped <= T_k
+// before tick k and stopping after the last record, exactly as vmass-replay's TickResampler
+// does, so both give bit-identical estimates. The SPSC queue then applies back-pressure instead
+// of dropping.
+//
+// After start-up the estimator thread allocates nothing (fixed-size records, seqlocks, a
+// preallocated ring); the receive thread allocates only in the samples-CSV parser.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "vmass/can/decoder.hpp"
+#include "vmass/config/config.hpp"
+#include "vmass/service/input_source.hpp"
+#include "vmass/service/service_config.hpp"
+
+namespace vmassd {
+
+struct Options {
+  std::string config_path;
+  std::string can_interface;  ///< --can
+  std::string replay_log;     ///< --replay (candump -l)
+  std::string samples_csv;    ///< --samples
+  std::string speed = "1";    ///< --speed X|max (recordings only)
+  std::string lcm_url;        ///< --lcm-url (overrides lcm.url)
+  std::string state_file;     ///< --state-file (overrides daemon.state_file)
+  bool no_restore = false;    ///< --no-restore
+};
+
+/// Runs the daemon until a signal or the end of a recording. Returns the process exit code
+/// (0 orderly stop, 1 start-up failure, 2 configuration error).
+int run(const Options& options);
+
+}  // namespace vmassd

@@ -1,0 +1,37 @@
+// vmassd: the real-time vehicle mass estimation daemon (see daemon.hpp for its threads).
+//
+//   vmassd --config FILE [--can IFACE | --replay LOG [--speed X|max] | --samples CSV
+//          [--speed X|max]] [--lcm-url URL] [--state-file PATH] [--no-restore]
+//
+// Publishes vmass.mass_estimate_t on VMASS_ESTIMATE, vmass.status_t on VMASS_STATUS (and
+// vmass.pair_t on VMASS_PAIRS when lcm.publish_pairs). Runs under systemd as Type=notify
+// (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
+// (--replay, --samples) stops the daemon at its end.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "daemon.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"vmassd: live vehicle mass estimation from CAN data, published on LCM"};
+  vmassd::Options o;
+  app.add_option("--config", o.config_path, "vmass YAML config")->required();
+  auto* can = app.add_option("--can", o.can_interface,
+                             "SocketCAN interface (default: daemon.can_interface, can0)");
+  auto* replay = app.add_option("--replay", o.replay_log, "replay a candump -l log");
+  auto* samples = app.add_option("--samples", o.samples_csv,
+                                 "replay a samples.csv (inputs already in SI units)");
+  app.add_option("--speed", o.speed,
+                 "recordings: playback speed factor, or 'max' (ticks follow log time)")
+      ->default_str("1");
+  app.add_option("--lcm-url", o.lcm_url, "LCM URL (overrides lcm.url)");
+  app.add_option("--state-file", o.state_file,
+                 "saved-state file (overrides daemon.state_file / $STATE_DIRECTORY)");
+  app.add_flag("--no-restore", o.no_restore, "do not restore the saved state at start");
+  can->excludes(replay)->excludes(samples);
+  replay->excludes(samples);
+  CLI11_PARSE(app, argc, argv);
+
+  spdlog::set_pattern("vmassd %^%l%$: %v");
+  return vmassd::run(o);
+}
