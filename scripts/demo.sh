@@ -9,7 +9,7 @@ cd "$repo"
 out=${1:-out/demo}
 
 bash scripts/install-deps.sh
-cmake --preset release >/dev/null
+cmake --preset release -DVMASS_BUILD_TESTS=OFF >/dev/null
 cmake --build --preset release -j "$(nproc)"
 
 bin=build/release/bin
