@@ -115,7 +115,7 @@ CandumpLine parse_candump_line(std::string_view line, CandumpRecord* record, std
     const int fl = hex_value(tok[d]);
     if (fl < 0) return corrupt(error, "CAN FD flags digit is not hexadecimal");
     f.flags = static_cast<std::uint8_t>(f.flags | kFd | ((fl & 1) ? kFdBrs : 0) |
-                                        ((fl & 2) ? kFdEsi : 0));
+                                        ((fl & 2) ? kFdEsi : 0) | ((fl & 4) ? kFdFdf : 0));
     ++d;
     max_len = kFdMaxLen;
   } else if (d < tok.size() && tok[d] == 'R') {  // remote request
@@ -214,7 +214,8 @@ std::size_t format_candump_line(const CanFrame& f, std::string_view interface, c
   } else {
     if (f.fd()) {
       *p++ = '#';
-      *p++ = kHex[((f.flags & kFdBrs) ? 1 : 0) | ((f.flags & kFdEsi) ? 2 : 0)];
+      *p++ = kHex[((f.flags & kFdBrs) ? 1 : 0) | ((f.flags & kFdEsi) ? 2 : 0) |
+                  ((f.flags & kFdFdf) ? 4 : 0)];
     }
     for (int i = 0; i < len; ++i) {
       *p++ = kHex[f.data[i] >> 4];

@@ -64,6 +64,8 @@ const char* to_string(ReadStatus status) {
 
 namespace {
 
+constexpr std::uint8_t kCanFdFdf = 0x04;  // CANFD_FDF (linux/can.h since 5.14)
+
 std::string errno_text(const char* what, int err) {
   return std::string(what) + ": " + std::strerror(err);
 }
@@ -313,7 +315,8 @@ ReadStatus SocketCanReader::handle_record(const void* data, std::size_t size, co
   }
   if (is_fd) {
     f.flags = static_cast<std::uint8_t>(f.flags | kFd | ((raw.flags & CANFD_BRS) ? kFdBrs : 0) |
-                                        ((raw.flags & CANFD_ESI) ? kFdEsi : 0));
+                                        ((raw.flags & CANFD_ESI) ? kFdEsi : 0) |
+                                        ((raw.flags & kCanFdFdf) ? kFdFdf : 0));
     ++stats_.fd_frames;
   }
   ++stats_.frames;

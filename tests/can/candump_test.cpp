@@ -58,6 +58,9 @@ TEST(Candump, ParsesEveryFrameForm) {
   EXPECT_EQ(r.frame.data[63], 0xAA);
   EXPECT_EQ(r.direction, 'R');
 
+  r = parse_ok("(1.500000) can0 100##5");  // BRS and FDF, as newer kernels report FD frames
+  EXPECT_EQ(r.frame.flags, kFd | kFdBrs | kFdFdf);
+  EXPECT_EQ(format_candump_line(r.frame, "can0"), "(0000000001.500000) can0 100##5\n");
   r = parse_ok("(1.500000) can0 100##0");
   EXPECT_TRUE(r.frame.fd());
   EXPECT_EQ(r.frame.len, 0);
@@ -192,7 +195,7 @@ TEST(Candump, RandomFramesRoundTrip) {
     f.id = static_cast<std::uint32_t>(rng()) & (kind == 1 ? kEffMask : kSffMask);
     if (kind == 2) {
       f.flags = static_cast<std::uint8_t>(kFd | (rng() % 2 ? kFdBrs : 0) |
-                                          (rng() % 2 ? kExtended : 0));
+                                          (rng() % 2 ? kFdFdf : 0) | (rng() % 2 ? kExtended : 0));
       if (f.extended()) f.id = static_cast<std::uint32_t>(rng()) & kEffMask;
       f.len = static_cast<std::uint8_t>(lens[rng() % 10]);
     } else if (kind == 3) {

@@ -54,7 +54,7 @@ TEST(SocketCan, ReadsClassicFdExtendedRemoteAndErrorRecords) {
   p.send_classic(0x123, {0xDE, 0xAD});
   p.send_classic(0x18DAF110 | CAN_EFF_FLAG, {1, 2, 3});
   p.send_classic(0x321 | CAN_RTR_FLAG, {});
-  p.send_fd(0x7FF, 64, CANFD_BRS);
+  p.send_fd(0x7FF, 64, CANFD_BRS | 0x04 /* CANFD_FDF */);
   p.send_fd(0x1ABCDE | CAN_EFF_FLAG, 12, CANFD_ESI);
   p.send_classic(CAN_ERR_FLAG | CAN_ERR_BUSOFF | CAN_ERR_RESTARTED, {0, 0, 0, 0, 0, 0, 0, 0});
   p.send_classic(CAN_ERR_FLAG | CAN_ERR_CRTL, {0, 4, 0, 0, 0, 0, 0, 0});
@@ -80,7 +80,7 @@ TEST(SocketCan, ReadsClassicFdExtendedRemoteAndErrorRecords) {
 
   ASSERT_EQ(reader.read(&f, 1000), ReadStatus::kFrame);
   EXPECT_EQ(f.id, 0x7FFu);
-  EXPECT_EQ(f.flags, kFd | kFdBrs);
+  EXPECT_EQ(f.flags, kFd | kFdBrs | kFdFdf);
   EXPECT_EQ(f.len, 64);
   EXPECT_EQ(f.data[63], 64);
 

@@ -241,8 +241,13 @@ int run_dump(const std::string& iface, long count, double idle_timeout_s, const 
   CanFrame f;
   const int step_ms = 100;
   double idle_s = 0.0;
+  std::uint64_t reopens = 0;
   while (count <= 0 || got < count) {
     const ReadStatus st = reader->read(&f, step_ms);
+    if (reader->stats().reopens != reopens) {
+      reopens = reader->stats().reopens;
+      std::cerr << "vmass-can dump: socket re-created on " << iface << "\n";
+    }
     if (st == ReadStatus::kFrame) {
       idle_s = 0.0;
       ++got;

@@ -26,6 +26,7 @@ enum FrameFlag : std::uint8_t {
   kFdEsi = 1u << 3,     ///< CAN FD error state indicator (CANFD_ESI)
   kRemote = 1u << 4,    ///< remote transmission request (classic only)
   kError = 1u << 5,     ///< error frame: id holds error class bits
+  kFdFdf = 1u << 6,     ///< CAN FD frame-format flag (CANFD_FDF), as newer kernels report it
 };
 
 struct CanFrame {

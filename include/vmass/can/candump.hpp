@@ -3,7 +3,7 @@
 // A line is `(SECONDS.FRACTION) INTERFACE FRAME [R|T]` with FRAME one of
 //   123#DEADBEEF           classic frame, 3 hex digits: 11-bit id
 //   12345678#DEADBEEF      8 hex digits: 29-bit id (bit 0x20000000 set: an error frame)
-//   123##1DEADBEEF         CAN FD, the digit after ## holds the flags (1 BRS, 2 ESI)
+//   123##1DEADBEEF         CAN FD, the digit after ## holds the flags (1 BRS, 2 ESI, 4 FDF)
 //   123#R  123#R5          remote request, optionally with its length
 // FRACTION has 6 (microseconds) or 9 (nanoseconds, truncated to microseconds) digits. Data may
 // use '.' between bytes and a classic frame may end in `_X` (raw DLC 9..F), as can-utils
