@@ -41,7 +41,8 @@ CandumpLine parse_candump_line(std::string_view line, CandumpRecord* record, std
   const std::size_t sec_begin = p;
   while (p < line.size() && line[p] >= '0' && line[p] <= '9') ++p;
   const std::size_t sec_digits = p - sec_begin;
-  if (sec_digits == 0 || sec_digits > 12) return corrupt(error, "expected seconds in the timestamp");
+  if (sec_digits == 0 || sec_digits > 12)
+    return corrupt(error, "expected seconds in the timestamp");
   if (p >= line.size() || line[p] != '.') return corrupt(error, "expected '.' in the timestamp");
   ++p;
   const std::size_t frac_begin = p;

@@ -599,8 +599,8 @@ class Parser {
   int message_for(std::uint32_t raw_id, const char* statement) {
     if (const auto it = by_raw_id_.find(raw_id); it != by_raw_id_.end()) return it->second;
     if (ignored_ids_.count(raw_id) != 0) return -2;
-    deviation(statement_line_, std::string(statement) + " refers to unknown message id " +
-                                   std::to_string(raw_id));
+    deviation(statement_line_,
+              std::string(statement) + " refers to unknown message id " + std::to_string(raw_id));
     return -1;
   }
   Signal* signal_for(int msg, const std::string& name, const char* statement) {
@@ -854,8 +854,8 @@ class Parser {
     if (!read_uint(type, "value type 0, 1 (float32) or 2 (float64)")) return;
     if (!end_statement("SIG_VALTYPE_")) return;
     if (type > 2) {
-      error_at(statement_line_, "SIG_VALTYPE_ " + signal_name + ": unknown value type " +
-                                    std::to_string(type));
+      error_at(statement_line_,
+               "SIG_VALTYPE_ " + signal_name + ": unknown value type " + std::to_string(type));
       return;
     }
     if (Signal* sg = signal_for(message_for(raw_id, "SIG_VALTYPE_"), signal_name, "SIG_VALTYPE_")) {
@@ -896,7 +896,8 @@ class Parser {
     const AttributeDefinition* format = attribute("VFrameFormat");
     for (std::size_t i = 0; i < db_.messages.size(); ++i) {
       Message& m = db_.messages[i];
-      if (cycle && !cycle->default_value.empty() && explicit_cycle_.count(static_cast<long>(i)) == 0) {
+      if (cycle && !cycle->default_value.empty() &&
+          explicit_cycle_.count(static_cast<long>(i)) == 0) {
         double v = 0.0;
         const char* b = cycle->default_value.data();
         if (std::from_chars(b, b + cycle->default_value.size(), v).ec == std::errc() && v >= 0 &&
@@ -1126,9 +1127,9 @@ class Parser {
   int statement_line_ = 1;
   bool failed_ = false;
   int current_message_ = kNone;
-  std::unordered_map<std::uint64_t, int> by_key_;       // (extended << 32 | id) -> message
-  std::unordered_map<std::uint32_t, int> by_raw_id_;    // id as written -> message
-  std::unordered_set<std::uint32_t> ignored_ids_;       // VECTOR__INDEPENDENT_SIG_MSG
+  std::unordered_map<std::uint64_t, int> by_key_;     // (extended << 32 | id) -> message
+  std::unordered_map<std::uint32_t, int> by_raw_id_;  // id as written -> message
+  std::unordered_set<std::uint32_t> ignored_ids_;     // VECTOR__INDEPENDENT_SIG_MSG
   std::unordered_set<long> explicit_cycle_, explicit_format_;
   std::vector<MulValEntry> mul_vals_;
 };

@@ -63,7 +63,7 @@ bool compile_signal(const Signal& sg, int length_bytes, CompiledSignal& out, std
     out.shift = static_cast<std::uint8_t>(sg.start_bit % 8);
   } else {
     first_bit = (sg.start_bit / 8) * 8 + (7 - sg.start_bit % 8);  // MSB, big-endian linear
-    last_bit = first_bit + sg.length - 1;                           // LSB
+    last_bit = first_bit + sg.length - 1;                         // LSB
     out.shift = static_cast<std::uint8_t>(7 - last_bit % 8);
   }
   if (sg.start_bit < 0 || last_bit >= 8 * length_bytes) {

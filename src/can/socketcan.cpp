@@ -154,8 +154,8 @@ std::unique_ptr<SocketCanReader> SocketCanReader::open(const SocketCanOptions& o
       options.reopen_initial_ms, options.reopen_max_ms);
 }
 
-SocketCanReader::SocketCanReader(int fd, Opener reopen, int reopen_initial_ms,
-                                 int reopen_max_ms, RecvMsg recv)
+SocketCanReader::SocketCanReader(int fd, Opener reopen, int reopen_initial_ms, int reopen_max_ms,
+                                 RecvMsg recv)
     : fd_(fd),
       reopen_(std::move(reopen)),
       recv_(std::move(recv)),
@@ -199,8 +199,7 @@ ReadStatus SocketCanReader::read(CanFrame* frame, int timeout_ms) {
       if (Clock::now() >= deadline) return ReadStatus::kReopening;
       continue;
     }
-    const auto left =
-        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count();
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count();
     pollfd p{fd_, POLLIN, 0};
     const int pr = ::poll(&p, 1, left > 0 ? static_cast<int>(left) : 0);
     if (pr < 0) {
@@ -263,8 +262,7 @@ ReadStatus SocketCanReader::handle_record(const void* data, std::size_t size, co
     for (cmsghdr* c = CMSG_FIRSTHDR(const_cast<msghdr*>(msg)); c != nullptr;
          c = CMSG_NXTHDR(const_cast<msghdr*>(msg), c)) {
       if (c->cmsg_level != SOL_SOCKET) continue;
-      if (c->cmsg_type == SO_TIMESTAMPING &&
-          c->cmsg_len >= CMSG_LEN(sizeof(scm_timestamping))) {
+      if (c->cmsg_type == SO_TIMESTAMPING && c->cmsg_len >= CMSG_LEN(sizeof(scm_timestamping))) {
         scm_timestamping ts;
         std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
         const timespec& t = (ts.ts[0].tv_sec != 0 || ts.ts[0].tv_nsec != 0) ? ts.ts[0] : ts.ts[2];

@@ -106,8 +106,7 @@ TEST(Candump, CorruptLinesSayWhy) {
   EXPECT_NE(parse_error("(1.000000) can0 123##1001122334455667788").find("CAN FD length"),
             std::string::npos);
   EXPECT_NE(parse_error("(1.000000) can0 123#XY").find("hexadecimal"), std::string::npos);
-  EXPECT_NE(parse_error("(1.000000) can0 123#00 junk").find("after the frame"),
-            std::string::npos);
+  EXPECT_NE(parse_error("(1.000000) can0 123#00 junk").find("after the frame"), std::string::npos);
   EXPECT_NE(parse_error("(1.000000) can0").find("frame"), std::string::npos);
   EXPECT_NE(parse_error("(1.000000) can0 FFFFFFFF#00").find("extra flag"), std::string::npos);
   EXPECT_NE(parse_error("(1.000000) can0 123#R9").find("remote"), std::string::npos);
@@ -177,8 +176,7 @@ TEST(Candump, WriterMatchesCandumpExactly) {
   f.id = 0x40;
   f.len = 8;
   for (int i = 0; i < 8; ++i) f.data[i] = 0;
-  EXPECT_EQ(format_candump_line(f, "can0"),
-            "(0000000000.000005) can0 20000040#0000000000000000\n");
+  EXPECT_EQ(format_candump_line(f, "can0"), "(0000000000.000005) can0 20000040#0000000000000000\n");
 }
 
 TEST(Candump, RandomFramesRoundTrip) {

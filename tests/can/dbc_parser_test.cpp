@@ -174,18 +174,18 @@ TEST(DbcParser, CrlfAndByteOrderMark) {
 
 // Each deviation real files contain: loaded as meant, a warning naming file:line.
 const char* kDeviations =
-    "BU_: A\n"                                                   // 1
-    "BO_ 2365480958 Ext: 8 A\n"                                  // 2 (bit 31: fine)
-    " SG_ 1st : 0|8@1+ (1,0) [0|0] \"\xB0/s\" A\n"               // 3 digit name, cp1252 unit
-    "BO_ 419364350 NoBit31: 8 A\n"                               // 4 > 0x7FF without bit 31
-    " SG_ S : 0|8@1+ (1,0) [0|0] \"\" A\n"                       // 5
-    "BO_ 1073743490 Bit30: 8 A\n"                                // 6 bit 30 (Toyota)
-    " SG_ T : 0|8@1+ (1,0) [0|0] \"\" A\n"                       // 7
-    "VAL_ 419364350 S 0 \"off\" 1 \"on\"\n"                      // 8 VAL_ without ;
-    "CM_ 419364350 S \"signal comment without SG_\";\n"          // 9 CM_ without keyword
-    "CM_ 419364350 \"message comment without BO_\";\n"           // 10
-    "FOO_ bar baz\n"                                             // 11 unknown keyword
-    "CM_ SG_ 419364350 Missing \"no such signal\";\n";           // 12
+    "BU_: A\n"                                           // 1
+    "BO_ 2365480958 Ext: 8 A\n"                          // 2 (bit 31: fine)
+    " SG_ 1st : 0|8@1+ (1,0) [0|0] \"\xB0/s\" A\n"       // 3 digit name, cp1252 unit
+    "BO_ 419364350 NoBit31: 8 A\n"                       // 4 > 0x7FF without bit 31
+    " SG_ S : 0|8@1+ (1,0) [0|0] \"\" A\n"               // 5
+    "BO_ 1073743490 Bit30: 8 A\n"                        // 6 bit 30 (Toyota)
+    " SG_ T : 0|8@1+ (1,0) [0|0] \"\" A\n"               // 7
+    "VAL_ 419364350 S 0 \"off\" 1 \"on\"\n"              // 8 VAL_ without ;
+    "CM_ 419364350 S \"signal comment without SG_\";\n"  // 9 CM_ without keyword
+    "CM_ 419364350 \"message comment without BO_\";\n"   // 10
+    "FOO_ bar baz\n"                                     // 11 unknown keyword
+    "CM_ SG_ 419364350 Missing \"no such signal\";\n";   // 12
 
 TEST(DbcParser, ToleratesRealFileDeviationsWithWarnings) {
   const DbcParseResult r = parse_dbc(kDeviations, "dev.dbc");
@@ -266,7 +266,7 @@ TEST(DbcParser, SignalsNotFittingTheirMessageAreErrorsNamingTheSignal) {
       " SG_ TooFar : 9|8@1+ (1,0) [0|0] \"\" A\n"
       " SG_ Zero : 0|0@1+ (1,0) [0|0] \"\" A\n"
       " SG_ Huge : 0|65@1+ (1,0) [0|0] \"\" A\n"
-      " SG_ MotoTooFar : 15|16@0+ (1,0) [0|0] \"\" A\n"   // MSB in byte 1: LSB lands in byte 2
+      " SG_ MotoTooFar : 15|16@0+ (1,0) [0|0] \"\" A\n"  // MSB in byte 1: LSB lands in byte 2
       " SG_ MotoOk : 7|16@0+ (1,0) [0|0] \"\" A\n"
       "BO_ 2 Big: 65 A\n";
   const DbcParseResult r = parse_dbc(text, "fit.dbc");
@@ -295,8 +295,8 @@ TEST(DbcParser, OverlapsAreReportedUnlessTheMultiplexorSeparatesThem) {
       "BO_ 1 M: 8 A\n"
       " SG_ Sw M : 0|8@1+ (1,0) [0|0] \"\" A\n"
       " SG_ P m0 : 8|16@1+ (1,0) [0|0] \"\" A\n"
-      " SG_ Q m1 : 8|16@1+ (1,0) [0|0] \"\" A\n"   // same bits as P, other mux value: fine
-      " SG_ R : 23|8@0+ (1,0) [0|0] \"\" A\n"      // byte 2: overlaps P and Q
+      " SG_ Q m1 : 8|16@1+ (1,0) [0|0] \"\" A\n"  // same bits as P, other mux value: fine
+      " SG_ R : 23|8@0+ (1,0) [0|0] \"\" A\n"     // byte 2: overlaps P and Q
       " SG_ S : 32|8@1+ (1,0) [0|0] \"\" A\n",
       "ov.dbc");
   ASSERT_TRUE(r.ok()) << dump(r);
@@ -345,25 +345,24 @@ TEST_P(RealDbc, LoadsWithExpectedCounts) {
   EXPECT_EQ(signals, f.signals);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    OpenDbc, RealDbc,
-    ::testing::Values(
-        // Four signals of MRR_Detection_022 lie beyond its 24-byte payload: errors, left out
-        // (cantools counts them: 1854).
-        RealFile{"FORD_CADS_64.dbc", 80, 1850, 4},
-        RealFile{"gm_global_a_high_voltage_management.dbc", 12, 125, 0},
-        RealFile{"hyundai_2015_mcan.dbc", 170, 1180, 0},
-        RealFile{"tesla_model3_vehicle.dbc", 11, 209, 0},
-        RealFile{"toyota_2017_ref_pt.dbc", 143, 1315, 0},
-        RealFile{"toyota_prius_2010_pt.dbc", 26, 78, 0},
-        RealFile{"vw_mqb.dbc", 113, 1348, 0}),
-    [](const ::testing::TestParamInfo<RealFile>& p) {
-      std::string n = p.param.name;
-      for (char& c : n) {
-        if (!isalnum(static_cast<unsigned char>(c))) c = '_';
-      }
-      return n;
-    });
+INSTANTIATE_TEST_SUITE_P(OpenDbc, RealDbc,
+                         ::testing::Values(
+                             // Four signals of MRR_Detection_022 lie beyond its 24-byte payload:
+                             // errors, left out (cantools counts them: 1854).
+                             RealFile{"FORD_CADS_64.dbc", 80, 1850, 4},
+                             RealFile{"gm_global_a_high_voltage_management.dbc", 12, 125, 0},
+                             RealFile{"hyundai_2015_mcan.dbc", 170, 1180, 0},
+                             RealFile{"tesla_model3_vehicle.dbc", 11, 209, 0},
+                             RealFile{"toyota_2017_ref_pt.dbc", 143, 1315, 0},
+                             RealFile{"toyota_prius_2010_pt.dbc", 26, 78, 0},
+                             RealFile{"vw_mqb.dbc", 113, 1348, 0}),
+                         [](const ::testing::TestParamInfo<RealFile>& p) {
+                           std::string n = p.param.name;
+                           for (char& c : n) {
+                             if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+                           }
+                           return n;
+                         });
 
 TEST(RealDbcDetails, FactsCheckedAgainstTheFiles) {
   const DbcParseResult vw = load_dbc_file(kDataDir + "/dbc/vw_mqb.dbc");
@@ -380,7 +379,8 @@ TEST(RealDbcDetails, FactsCheckedAgainstTheFiles) {
   const int kbi = vw.database.find_message(1720, false);
   ASSERT_GE(kbi, 0);
   const Message& k = vw.database.messages[static_cast<std::size_t>(kbi)];
-  const Signal& ru = k.signals[static_cast<std::size_t>(k.find_signal("KBI_Reifenumfang_Sekundaer"))];
+  const Signal& ru =
+      k.signals[static_cast<std::size_t>(k.find_signal("KBI_Reifenumfang_Sekundaer"))];
   EXPECT_NE(ru.comment.find("\nPrim\xC3\xA4rachse: KBI_Reifenumfang\n"), std::string::npos);
   // Comments naming signals the file does not define: warnings with their line.
   EXPECT_TRUE(has_diagnostic(vw, Severity::kWarning, 1630, "unknown signal ACC_Hold_Request"));

@@ -154,8 +154,8 @@ TEST(Decoder, RandomLayoutsMatchTheBitWalk) {
       d.decode(f, [&](int i, double v) {
         ++seen;
         const Signal& s = msg.signals[static_cast<std::size_t>(i)];
-        expect_same(v, walk_physical(s, f.data), s.name + " " + std::to_string(s.start_bit) + "|" +
-                                                     std::to_string(s.length));
+        expect_same(v, walk_physical(s, f.data),
+                    s.name + " " + std::to_string(s.start_bit) + "|" + std::to_string(s.length));
       });
       EXPECT_EQ(seen, 6);
     }
@@ -167,8 +167,8 @@ TEST(Decoder, RandomLayoutsMatchTheBitWalk) {
 TEST(Decoder, RealFilesMatchTheBitWalk) {
   std::mt19937_64 rng(777);
   for (const char* name : {"vw_mqb.dbc", "toyota_prius_2010_pt.dbc", "toyota_2017_ref_pt.dbc",
-                           "FORD_CADS_64.dbc", "tesla_model3_vehicle.dbc",
-                           "hyundai_2015_mcan.dbc", "gm_global_a_high_voltage_management.dbc"}) {
+                           "FORD_CADS_64.dbc", "tesla_model3_vehicle.dbc", "hyundai_2015_mcan.dbc",
+                           "gm_global_a_high_voltage_management.dbc"}) {
     DbcParseResult r = load_dbc_file(kDataDir + "/dbc/" + name);
     std::string err;
     auto d = Decoder::compile(r.database, &err);
@@ -189,12 +189,14 @@ TEST(Decoder, RealFilesMatchTheBitWalk) {
           }
         }
         std::vector<int> seen(m.signals.size(), 0);
-        ASSERT_EQ(d->decode(f, [&](int i, double v) {
-          seen[static_cast<std::size_t>(i)] = 1;
-          expect_same(v, walk_physical(m.signals[static_cast<std::size_t>(i)], f.data),
-                      std::string(name) + " " + m.name + "." +
-                          m.signals[static_cast<std::size_t>(i)].name);
-        }),
+        ASSERT_EQ(d->decode(f,
+                            [&](int i, double v) {
+                              seen[static_cast<std::size_t>(i)] = 1;
+                              expect_same(
+                                  v, walk_physical(m.signals[static_cast<std::size_t>(i)], f.data),
+                                  std::string(name) + " " + m.name + "." +
+                                      m.signals[static_cast<std::size_t>(i)].name);
+                            }),
                   DecodeStatus::kOk);
         for (std::size_t i = 0; i < m.signals.size(); ++i) {
           EXPECT_EQ(seen[i], walk_present(m, static_cast<int>(i), f.data) ? 1 : 0)
@@ -249,8 +251,8 @@ TEST(Decoder, ExtendedMultiplexingAndFloats) {
   std::uint8_t flags[6];
   f.data[0] = 0;
   ASSERT_EQ(d.decode_into(f, nullptr, values, flags), DecodeStatus::kOk);
-  EXPECT_EQ(values[2], -2);      // A: 0xFFFE signed
-  EXPECT_EQ(values[4], -1.5);    // C float32
+  EXPECT_EQ(values[2], -2);       // A: 0xFFFE signed
+  EXPECT_EQ(values[4], -1.5);     // C float32
   EXPECT_EQ(values[5], 6.02e23);  // D float64
   EXPECT_EQ(flags[1], 0);
   EXPECT_EQ(flags[3], 0);
@@ -316,12 +318,11 @@ TEST(Decoder, EncodeThenDecodeIsIdentityAndClamps) {
     EXPECT_EQ(out[2], w);
     EXPECT_EQ(out[3], big);
     // Independent check of the written bits.
-    EXPECT_EQ(walk_raw(d.database().messages[0].signals[2], f.data),
-              static_cast<std::uint64_t>(w));
+    EXPECT_EQ(walk_raw(d.database().messages[0].signals[2], f.data), static_cast<std::uint64_t>(w));
   }
   // Rounding to the nearest raw step and clamping to the bit width.
   const CompiledSignal& cu = d.compiled(SignalRef{0, 0});
-  EXPECT_EQ(d.physical_to_raw(cu, -19.94), 1u);   // (−19.94+20)/0.1 = 0.6 -> 1
+  EXPECT_EQ(d.physical_to_raw(cu, -19.94), 1u);  // (−19.94+20)/0.1 = 0.6 -> 1
   EXPECT_EQ(d.physical_to_raw(cu, 1e9), 4095u);
   EXPECT_EQ(d.physical_to_raw(cu, -1e9), 0u);
   const CompiledSignal& cs = d.compiled(SignalRef{0, 1});
@@ -407,8 +408,8 @@ TEST(Decoder, DecodingAllocatesNothing) {
 }
 
 TEST(Decoder, LookupByIdAndKind) {
-  const Decoder d = compile_text(
-      "BO_ 2047 Std: 1 A\nBO_ 2147485695 Ext: 1 A\nBO_ 2684354559 ExtMax: 1 A\n");
+  const Decoder d =
+      compile_text("BO_ 2047 Std: 1 A\nBO_ 2147485695 Ext: 1 A\nBO_ 2684354559 ExtMax: 1 A\n");
   EXPECT_EQ(d.find_message(0x7FF, false), 0);
   EXPECT_EQ(d.find_message(0x7FF, true), 1);
   EXPECT_EQ(d.find_message(0x1FFFFFFF, true), 2);

@@ -101,8 +101,8 @@ int run_check(const std::string& dbc, bool strict) {
     std::printf(", %zu signals\n", m.signals.size());
     for (const Signal& s : m.signals) {
       std::printf("  %s %d|%d@%c%c (%.17g,%.17g)", s.name.c_str(), s.start_bit, s.length,
-                  s.byte_order == ByteOrder::kIntel ? '1' : '0', s.is_signed ? '-' : '+',
-                  s.factor, s.offset);
+                  s.byte_order == ByteOrder::kIntel ? '1' : '0', s.is_signed ? '-' : '+', s.factor,
+                  s.offset);
       if (s.has_range) std::printf(" [%.17g|%.17g]", s.minimum, s.maximum);
       if (!s.unit.empty()) std::printf(" \"%s\"", s.unit.c_str());
       if (s.value_type == ValueType::kFloat32) std::printf(" float32");
@@ -159,9 +159,9 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
     if (st != DecodeStatus::kOk) {
       if (st == DecodeStatus::kTooShort) {
         std::cerr << reader.source() << ":" << reader.line_number() << ": frame "
-                  << db.messages[static_cast<std::size_t>(m)].name << " has "
-                  << int(rec.frame.len) << " bytes, the DBC says "
-                  << db.messages[static_cast<std::size_t>(m)].length << ": rejected\n";
+                  << db.messages[static_cast<std::size_t>(m)].name << " has " << int(rec.frame.len)
+                  << " bytes, the DBC says " << db.messages[static_cast<std::size_t>(m)].length
+                  << ": rejected\n";
       }
       if (!json) std::cout << format_candump_line(rec.frame, rec.interface);
       continue;
@@ -215,8 +215,8 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
   const CandumpStats& cs = reader.stats();
   std::cerr << "vmass-can decode: " << cs.frames << " frames, " << stats.decoded << " decoded, "
             << stats.unknown_id << " unknown id, " << stats.too_short << " too short, "
-            << stats.remote << " remote, " << stats.error_frames << " error frames, "
-            << cs.corrupt << " corrupt lines\n";
+            << stats.remote << " remote, " << stats.error_frames << " error frames, " << cs.corrupt
+            << " corrupt lines\n";
   return 0;
 }
 
@@ -262,10 +262,10 @@ int run_dump(const std::string& iface, long count, double idle_timeout_s, const 
     if (idle_timeout_s > 0 && idle_s >= idle_timeout_s) break;
   }
   const SocketCanStats& s = reader->stats();
-  std::cerr << "vmass-can dump: " << got << " frames (" << s.fd_frames << " FD, "
-            << s.error_frames << " error), " << s.dropped << " dropped, " << s.interface_down
-            << " interface down, " << s.interface_gone << " interface gone, " << s.reopens
-            << " re-opened, " << s.no_kernel_timestamp << " without kernel timestamp\n";
+  std::cerr << "vmass-can dump: " << got << " frames (" << s.fd_frames << " FD, " << s.error_frames
+            << " error), " << s.dropped << " dropped, " << s.interface_down << " interface down, "
+            << s.interface_gone << " interface gone, " << s.reopens << " re-opened, "
+            << s.no_kernel_timestamp << " without kernel timestamp\n";
   return count > 0 && got < count ? 2 : 0;
 }
 

@@ -14,10 +14,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <map>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -114,7 +114,8 @@ std::string arg_value(int& argc, char** argv, const std::string& name, const std
 int main(int argc, char** argv) {
   const std::string dbc = arg_value(argc, argv, "--dbc", VMASS_BENCH_DEFAULT_DBC);
   const int frame_count = std::atoi(arg_value(argc, argv, "--frames", "20000").c_str());
-  const unsigned seed = static_cast<unsigned>(std::atoi(arg_value(argc, argv, "--seed", "1").c_str()));
+  const unsigned seed =
+      static_cast<unsigned>(std::atoi(arg_value(argc, argv, "--seed", "1").c_str()));
   const std::string python = arg_value(argc, argv, "--python", VMASS_BENCH_PYTHON);
   const int runs = std::atoi(arg_value(argc, argv, "--runs", "7").c_str());
   const std::string script = VMASS_BENCH_SCRIPT;
@@ -163,10 +164,11 @@ int main(int argc, char** argv) {
     decoder->decode(f, [&](int, double) { ++signals; });
   }
   g_log_text = log.str();
-  std::printf("vmass-can-bench: %s, %d frames of %zu messages (%zu left out: overlapping "
-              "signals), %.1f signals per frame\n",
-              dbc.c_str(), frame_count, usable.size(), overlapping.size(),
-              static_cast<double>(signals) / frame_count);
+  std::printf(
+      "vmass-can-bench: %s, %d frames of %zu messages (%zu left out: overlapping "
+      "signals), %.1f signals per frame\n",
+      dbc.c_str(), frame_count, usable.size(), overlapping.size(),
+      static_cast<double>(signals) / frame_count);
 
   benchmark::Initialize(&argc, argv);
   const std::string reps = std::to_string(runs);
@@ -204,8 +206,7 @@ int main(int argc, char** argv) {
   std::remove(log_path.c_str());
   const auto key = json.find("\"ns_per_frame_median\": ");
   if (key == std::string::npos) {
-    std::printf("cantools: not run (%s failed; run scripts/install-python-deps.sh)\n",
-                cmd.c_str());
+    std::printf("cantools: not run (%s failed; run scripts/install-python-deps.sh)\n", cmd.c_str());
     return 1;
   }
   const double cantools_ns = std::atof(json.c_str() + key + 23);

@@ -12,8 +12,8 @@
 
 namespace vmass::can {
 
-constexpr std::uint32_t kSffMask = 0x7FFu;         ///< 11-bit identifier mask
-constexpr std::uint32_t kEffMask = 0x1FFFFFFFu;    ///< 29-bit identifier mask
+constexpr std::uint32_t kSffMask = 0x7FFu;              ///< 11-bit identifier mask
+constexpr std::uint32_t kEffMask = 0x1FFFFFFFu;         ///< 29-bit identifier mask
 constexpr std::uint32_t kDbcExtendedBit = 0x80000000u;  ///< DBC BO_ ids: bit 31 = extended
 constexpr int kClassicMaxLen = 8;
 constexpr int kFdMaxLen = 64;
@@ -44,8 +44,8 @@ struct CanFrame {
 
 /// Valid CAN FD payload lengths are 0..8, 12, 16, 20, 24, 32, 48, 64.
 constexpr bool is_valid_fd_length(int len) {
-  return (len >= 0 && len <= 8) || len == 12 || len == 16 || len == 20 || len == 24 ||
-         len == 32 || len == 48 || len == 64;
+  return (len >= 0 && len <= 8) || len == 12 || len == 16 || len == 20 || len == 24 || len == 32 ||
+         len == 48 || len == 64;
 }
 
 }  // namespace vmass::can

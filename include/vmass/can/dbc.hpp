@@ -57,9 +57,9 @@ struct Signal {
   std::string comment;
   std::vector<ValueDescription> values;  ///< VAL_ entries, keys are raw values
 
-  bool is_multiplexor = false;     ///< `M` or `mNNM`: other signals switch on this one
+  bool is_multiplexor = false;             ///< `M` or `mNNM`: other signals switch on this one
   std::optional<std::uint64_t> mux_value;  ///< `mNN` as written
-  int mux_parent = -1;             ///< index of the switch signal in the message, -1 if none
+  int mux_parent = -1;               ///< index of the switch signal in the message, -1 if none
   std::vector<MuxRange> mux_ranges;  ///< raw switch values selecting this signal
 
   int line = 0;  ///< line of the SG_ statement
@@ -72,8 +72,8 @@ struct Message {
   int length = 0;  ///< payload bytes (DLC), 0..64
   std::string transmitter;
   std::string comment;
-  bool fd = false;            ///< VFrameFormat says CAN FD
-  int cycle_time_ms = 0;      ///< GenMsgCycleTime, 0 if not given
+  bool fd = false;        ///< VFrameFormat says CAN FD
+  int cycle_time_ms = 0;  ///< GenMsgCycleTime, 0 if not given
   std::vector<Signal> signals;
   int line = 0;  ///< line of the BO_ statement
 

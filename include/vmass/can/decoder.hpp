@@ -78,9 +78,9 @@ struct CompiledSignal {
   bool is_signed = false;
   ByteOrder byte_order = ByteOrder::kIntel;
   ValueType value_type = ValueType::kInteger;
-  std::int8_t switch_slot = -1;      ///< for a multiplexor: its slot among the message's switches
-  std::int16_t mux_parent = -1;      ///< signal index (in its message) of the switch, -1 if none
-  std::uint16_t range_begin = 0;     ///< into the decoder's range table
+  std::int8_t switch_slot = -1;   ///< for a multiplexor: its slot among the message's switches
+  std::int16_t mux_parent = -1;   ///< signal index (in its message) of the switch, -1 if none
+  std::uint16_t range_begin = 0;  ///< into the decoder's range table
   std::uint16_t range_count = 0;
 };
 
@@ -141,8 +141,8 @@ class Decoder {
   std::uint64_t physical_to_raw(const CompiledSignal& s, double physical) const;
 
   const CompiledSignal& compiled(SignalRef ref) const {
-    return signals_[static_cast<std::size_t>(messages_[static_cast<std::size_t>(ref.message)]
-                                                 .signal_begin) +
+    return signals_[static_cast<std::size_t>(
+                        messages_[static_cast<std::size_t>(ref.message)].signal_begin) +
                     static_cast<std::size_t>(ref.signal)];
   }
   int max_signals_per_message() const { return max_signals_; }

@@ -44,8 +44,8 @@ std::vector<CanIdFilter> filters_for(const Database& db);
 
 struct SocketCanOptions {
   std::string interface = "can0";
-  bool fd_frames = true;        ///< enable CAN_RAW_FD_FRAMES
-  bool error_frames = true;     ///< receive error frames (CAN_RAW_ERR_FILTER, all classes)
+  bool fd_frames = true;             ///< enable CAN_RAW_FD_FRAMES
+  bool error_frames = true;          ///< receive error frames (CAN_RAW_ERR_FILTER, all classes)
   std::vector<CanIdFilter> filters;  ///< empty: receive every id
   int receive_buffer_bytes = 0;      ///< SO_RCVBUF; 0 keeps the system default
   int reopen_initial_ms = 100;       ///< first wait before re-creating a vanished socket
@@ -72,7 +72,7 @@ enum class ReadStatus : std::uint8_t {
 const char* to_string(ReadStatus status);
 
 struct SocketCanStats {
-  std::uint64_t frames = 0;       ///< all records returned, error frames included
+  std::uint64_t frames = 0;  ///< all records returned, error frames included
   std::uint64_t fd_frames = 0;
   std::uint64_t error_frames = 0;
   std::uint64_t bus_off = 0;              ///< error frames with CAN_ERR_BUSOFF
@@ -84,7 +84,7 @@ struct SocketCanStats {
   std::uint64_t interface_down = 0;       ///< ENETDOWN seen
   std::uint64_t interface_gone = 0;       ///< ENODEV seen
   std::uint64_t reopen_attempts = 0;
-  std::uint64_t reopens = 0;              ///< successful re-creations
+  std::uint64_t reopens = 0;  ///< successful re-creations
 };
 
 class SocketCanReader {
@@ -95,8 +95,7 @@ class SocketCanReader {
   using RecvMsg = std::function<long(int fd, msghdr* msg, int flags)>;
 
   /// Opens `options.interface`; nullptr and *error when the socket cannot be made.
-  static std::unique_ptr<SocketCanReader> open(const SocketCanOptions& options,
-                                               std::string* error);
+  static std::unique_ptr<SocketCanReader> open(const SocketCanOptions& options, std::string* error);
 
   /// Reads from `fd` (owned, closed by the destructor). `reopen` re-creates the descriptor
   /// after ENODEV; an empty Opener makes ENODEV final (kReopening forever).
@@ -111,8 +110,7 @@ class SocketCanReader {
   ReadStatus read(CanFrame* frame, int timeout_ms);
 
   /// The parsing step of read(): one received record and its control messages.
-  ReadStatus handle_record(const void* data, std::size_t size, const msghdr* msg,
-                           CanFrame* frame);
+  ReadStatus handle_record(const void* data, std::size_t size, const msghdr* msg, CanFrame* frame);
 
   const SocketCanStats& stats() const { return stats_; }
   const std::string& last_error() const { return last_error_; }
