@@ -1,0 +1,269 @@
+// Pipeline::snapshot()/restore() and the state file: round trips, atomic writes, refusal of
+// corrupt or foreign files, and the load-change check after a restore.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "test_drive.hpp"
+#include "vmass/config/config.hpp"
+#include "vmass/service/state_store.hpp"
+
+namespace vmass {
+namespace {
+
+namespace fs = std::filesystem;
+using service::SavedState;
+
+PipelineParams test_params(const std::string& type = "bayes") {
+  ConfigLoad c = load_config_text(test::test_config_yaml("", type));
+  EXPECT_TRUE(c.ok()) << c.error;
+  return c.config->pipeline;
+}
+
+/// Runs the drive through a pipeline and returns it.
+void drive(Pipeline& p, const std::vector<Sample>& samples) {
+  for (const Sample& s : samples) p.step(s);
+}
+
+/// Same drive shifted by `offset_us` (so a second drive continues the time line).
+std::vector<Sample> shifted(std::vector<Sample> samples, TimeUs offset_us) {
+  for (Sample& s : samples) s.time_us += offset_us;
+  return samples;
+}
+
+void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
+  EXPECT_EQ(a.type, b.type);
+  EXPECT_EQ(a.has_prior, b.has_prior);
+  EXPECT_EQ(a.prior.mass_kg, b.prior.mass_kg);
+  EXPECT_EQ(a.prior.mass_std_kg, b.prior.mass_std_kg);
+  EXPECT_EQ(a.pairs_used, b.pairs_used);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(a.rls_theta[i], b.rls_theta[i]);
+    EXPECT_EQ(a.nig_mean[i], b.nig_mean[i]);
+  }
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(a.rls_covariance[i], b.rls_covariance[i]);
+    EXPECT_EQ(a.nig_scaled_covariance[i], b.nig_scaled_covariance[i]);
+  }
+  EXPECT_EQ(a.nig_shape, b.nig_shape);
+  EXPECT_EQ(a.nig_scale, b.nig_scale);
+  EXPECT_EQ(a.has_reference, b.has_reference);
+  EXPECT_EQ(a.reference_deflection_m, b.reference_deflection_m);
+  EXPECT_EQ(a.reference_deflection_std_m, b.reference_deflection_std_m);
+  for (int b_ = 0; b_ < kBlockCount; ++b_) {
+    EXPECT_EQ(a.blocks[b_].ticks, b.blocks[b_].ticks);
+    EXPECT_EQ(a.blocks[b_].accepted, b.blocks[b_].accepted);
+  }
+}
+
+class PipelineSnapshotTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PipelineSnapshotTest, RestoreGivesBackTheSameBelief) {
+  const PipelineParams params = test_params(GetParam());
+  const test::DriveSpec spec;
+  Pipeline original(params);
+  drive(original, test::make_drive(spec));
+  const PipelineSnapshot saved = original.snapshot();
+  ASSERT_TRUE(saved.has_prior);
+  ASSERT_TRUE(saved.has_reference);
+  ASSERT_GT(saved.pairs_used, 50) << "the drive must have produced events";
+  // Reference deflection = the drive's (eq. 3 at the true mass).
+  EXPECT_NEAR(saved.reference_deflection_m, test::deflection_for_mass(spec, spec.mass_kg), 1e-12);
+
+  Pipeline restored(params);
+  ASSERT_TRUE(restored.restore(saved));
+  expect_same(restored.snapshot(), saved);
+  EXPECT_EQ(restored.estimate().mass_kg, original.estimate().mass_kg);
+  EXPECT_EQ(restored.estimate().ci_low_kg, original.estimate().ci_low_kg);
+  EXPECT_EQ(restored.estimate().reason, StatusReason::kRestored);
+  EXPECT_TRUE(restored.estimate().has_mass());
+}
+
+TEST_P(PipelineSnapshotTest, SameLoadAfterRestartKeepsTheEstimate) {
+  const PipelineParams params = test_params(GetParam());
+  test::DriveSpec spec;
+  Pipeline original(params);
+  const std::vector<Sample> first = test::make_drive(spec);
+  drive(original, first);
+  const PipelineSnapshot saved = original.snapshot();
+
+  // Restart: the next drive starts standing with the same load.
+  Pipeline restored(params);
+  ASSERT_TRUE(restored.restore(saved));
+  const std::vector<Sample> second = shifted(test::make_drive(spec), first.back().time_us + 10'000);
+  bool reinitialised = false;
+  for (int i = 0; i < 500; ++i) {  // the whole first standstill (5 s): window completes at 3 s
+    reinitialised |= restored.step(second[static_cast<std::size_t>(i)]).reinitialised;
+  }
+  EXPECT_FALSE(reinitialised);
+  EXPECT_EQ(restored.estimate().pairs_used, saved.pairs_used);
+  EXPECT_NE(restored.estimate().reason, StatusReason::kLoadChanged);
+}
+
+TEST_P(PipelineSnapshotTest, LoadChangedWhileOffRestartsFromTheNewStaticMass) {
+  const PipelineParams params = test_params(GetParam());
+  test::DriveSpec spec;
+  Pipeline original(params);
+  const std::vector<Sample> first = test::make_drive(spec);
+  drive(original, first);
+  const PipelineSnapshot saved = original.snapshot();
+
+  // While the daemon was off, 300 kg were loaded.
+  test::DriveSpec loaded = spec;
+  loaded.mass_kg = spec.mass_kg + 300.0;
+  Pipeline restored(params);
+  ASSERT_TRUE(restored.restore(saved));
+  const std::vector<Sample> second =
+      shifted(test::make_drive(loaded), first.back().time_us + 10'000);
+  bool reinitialised = false;
+  for (int i = 0; i < 500; ++i) {
+    reinitialised |= restored.step(second[static_cast<std::size_t>(i)]).reinitialised;
+  }
+  EXPECT_TRUE(reinitialised);
+  EXPECT_EQ(restored.estimate().pairs_used, 0);
+  EXPECT_EQ(restored.estimate().reason, StatusReason::kLoadChanged);
+  // The new prior is eq. (3) at the new deflection: exactly the loaded mass here.
+  EXPECT_NEAR(restored.estimate().initial_mass_kg, loaded.mass_kg, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothRegressors, PipelineSnapshotTest, ::testing::Values("bayes", "rls"));
+
+TEST(PipelineRestore, RefusesWhatDoesNotFitAndChangesNothing) {
+  const PipelineParams params = test_params("bayes");
+  Pipeline p(params);
+  drive(p, test::make_drive(test::DriveSpec{}));
+  const PipelineSnapshot good = p.snapshot();
+
+  Pipeline fresh(params);
+  const PipelineSnapshot before = fresh.snapshot();
+  PipelineSnapshot other_type = good;
+  other_type.type = RegressorType::kRls;
+  EXPECT_FALSE(fresh.restore(other_type));
+  PipelineSnapshot no_reference = good;
+  no_reference.has_reference = false;
+  EXPECT_FALSE(fresh.restore(no_reference));
+  PipelineSnapshot no_prior = good;
+  no_prior.has_prior = false;
+  EXPECT_FALSE(fresh.restore(no_prior));
+  PipelineSnapshot nan_posterior = good;
+  nan_posterior.nig_mean[0] = std::nan("");
+  EXPECT_FALSE(fresh.restore(nan_posterior));
+  PipelineSnapshot indefinite = good;
+  indefinite.nig_scaled_covariance[1] = indefinite.nig_scaled_covariance[2] = 1e9;
+  EXPECT_FALSE(fresh.restore(indefinite));
+  expect_same(fresh.snapshot(), before);
+  EXPECT_FALSE(fresh.estimate().has_mass());
+}
+
+// ------------------------------------------------------------------------------ state file
+
+class StateFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("vmass_state_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    const PipelineParams params = test_params("bayes");
+    Pipeline p(params);
+    drive(p, test::make_drive(test::DriveSpec{}));
+    state_.snapshot = p.snapshot();
+    state_.saved_time_us = 60'000'000;
+    state_.fingerprint = service::state_fingerprint(params);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  static std::string read(const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  fs::path dir_;
+  SavedState state_;
+};
+
+TEST_F(StateFileTest, TextRoundTripIsExact) {
+  SavedState back;
+  std::string error;
+  ASSERT_TRUE(service::parse_state(service::format_state(state_), &back, &error)) << error;
+  EXPECT_EQ(back.fingerprint, state_.fingerprint);
+  EXPECT_EQ(back.saved_time_us, state_.saved_time_us);
+  expect_same(back.snapshot, state_.snapshot);
+}
+
+TEST_F(StateFileTest, AtomicWriteReplacesAndLeavesNoTemporary) {
+  const std::string p = path("vmassd.state");
+  std::string error;
+  ASSERT_TRUE(service::save_state_file(p, state_, &error)) << error;
+  SavedState second = state_;
+  second.saved_time_us += 1;
+  ASSERT_TRUE(service::save_state_file(p, second, &error)) << error;
+  EXPECT_FALSE(fs::exists(p + ".tmp"));
+  const service::StateLoad loaded = service::load_state_file(p, state_.fingerprint);
+  ASSERT_EQ(loaded.status, service::StateLoadStatus::kLoaded) << loaded.error;
+  EXPECT_EQ(loaded.state.saved_time_us, second.saved_time_us);
+  expect_same(loaded.state.snapshot, state_.snapshot);
+}
+
+TEST_F(StateFileTest, FailedWriteKeepsThePreviousFile) {
+  const std::string p = path("vmassd.state");
+  std::string error;
+  ASSERT_TRUE(service::save_state_file(p, state_, &error)) << error;
+  const std::string before = read(p);
+  // The temporary cannot be created: a directory is in its way.
+  fs::create_directories(p + ".tmp");
+  SavedState other = state_;
+  other.saved_time_us = 1;
+  EXPECT_FALSE(service::save_state_file(p, other, &error));
+  EXPECT_NE(error.find(".tmp"), std::string::npos) << error;
+  EXPECT_EQ(read(p), before);
+}
+
+TEST_F(StateFileTest, CorruptTruncatedOrForeignFilesAreRejected) {
+  const std::string text = service::format_state(state_);
+  const std::string p = path("vmassd.state");
+
+  EXPECT_EQ(service::load_state_file(path("absent"), state_.fingerprint).status,
+            service::StateLoadStatus::kMissing);
+
+  ASSERT_TRUE(test::write_text(p, text.substr(0, text.size() / 2)));  // torn write
+  service::StateLoad r = service::load_state_file(p, state_.fingerprint);
+  EXPECT_EQ(r.status, service::StateLoadStatus::kRejected);
+
+  std::string flipped = text;
+  flipped[text.find("nig_mean_0 ") + 11] ^= 1;  // one digit changed
+  ASSERT_TRUE(test::write_text(p, flipped));
+  r = service::load_state_file(p, state_.fingerprint);
+  EXPECT_EQ(r.status, service::StateLoadStatus::kRejected);
+  EXPECT_NE(r.error.find("checksum"), std::string::npos) << r.error;
+
+  ASSERT_TRUE(test::write_text(p, text));
+  r = service::load_state_file(p, state_.fingerprint ^ 1);
+  EXPECT_EQ(r.status, service::StateLoadStatus::kRejected);
+  EXPECT_NE(r.error.find("parameters"), std::string::npos) << r.error;
+  EXPECT_EQ(service::load_state_file(p, state_.fingerprint).status,
+            service::StateLoadStatus::kLoaded);
+}
+
+TEST(StateFingerprint, ChangesWithTheVehicleNotWithTuning) {
+  const PipelineParams base = test_params("bayes");
+  PipelineParams tuned = base;
+  tuned.estimator.supervisor.innovation_gate_sigma = 3.0;
+  EXPECT_EQ(service::state_fingerprint(base), service::state_fingerprint(tuned));
+  PipelineParams heavier = base;
+  heavier.vehicle.empty_mass_kg += 1.0;
+  EXPECT_NE(service::state_fingerprint(base), service::state_fingerprint(heavier));
+  PipelineParams recalibrated = base;
+  recalibrated.suspension.stiffness_n_per_m *= 1.01;
+  EXPECT_NE(service::state_fingerprint(base), service::state_fingerprint(recalibrated));
+  EXPECT_NE(service::state_fingerprint(base), service::state_fingerprint(test_params("rls")));
+}
+
+}  // namespace
+}  // namespace vmass
