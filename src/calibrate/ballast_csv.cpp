@@ -1,0 +1,257 @@
+#include "vmass/calibrate/ballast_csv.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+namespace vmass::calibrate {
+namespace {
+
+struct UnitFactor {
+  const char* unit;
+  double factor;
+};
+
+constexpr UnitFactor kMassUnits[] = {{"kg", 1.0}, {"t", 1000.0}, {"lb", 0.45359237}};
+constexpr UnitFactor kDeflectionUnits[] = {
+    {"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}, {"in", 0.0254}};
+constexpr UnitFactor kTimeUnits[] = {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}};
+constexpr UnitFactor kSpeedUnits[] = {{"mps", 1.0}, {"kmh", 1.0 / 3.6}};
+
+template <std::size_t N>
+std::string unit_list(const UnitFactor (&units)[N]) {
+  std::string s;
+  for (const UnitFactor& u : units) s += (s.empty() ? "" : ", ") + std::string(u.unit);
+  return s;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) {
+    s.remove_suffix(1);
+  }
+  return s;
+}
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    out.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// Locale-free strict number: the whole cell must be consumed.
+bool parse_number(std::string_view cell, double* out) {
+  if (!cell.empty() && cell.front() == '+') cell.remove_prefix(1);
+  if (cell.empty()) return false;
+  const char* end = cell.data() + cell.size();
+  const auto [ptr, ec] = std::from_chars(cell.data(), end, *out);
+  return ec == std::errc() && ptr == end;
+}
+
+struct Column {
+  int index = -1;
+  double factor = 1.0;
+  std::string name;
+};
+
+class Failure {
+ public:
+  explicit Failure(std::string message) : message_(std::move(message)) {}
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string message_;
+};
+
+// Matches `prefix_<unit>`; throws Failure for a missing or unknown unit.
+template <std::size_t N>
+bool match_column(std::string_view name, const std::string& prefix, const UnitFactor (&units)[N],
+                  const std::string& where, int index, Column* column) {
+  if (name == prefix) {
+    throw Failure(where + ": column '" + std::string(name) + "' has no unit (expected " + prefix +
+                  "_<unit>, unit one of " + unit_list(units) + ")");
+  }
+  if (name.size() <= prefix.size() + 1 || name.substr(0, prefix.size() + 1) != prefix + "_") {
+    return false;
+  }
+  const std::string_view unit = name.substr(prefix.size() + 1);
+  for (const UnitFactor& u : units) {
+    if (unit == u.unit) {
+      if (column->index >= 0) {
+        throw Failure(where + ": two " + prefix + " columns ('" + column->name + "' and '" +
+                      std::string(name) + "')");
+      }
+      column->index = index;
+      column->factor = u.factor;
+      column->name = std::string(name);
+      return true;
+    }
+  }
+  throw Failure(where + ": column '" + std::string(name) + "': unknown unit '" + std::string(unit) +
+                "' (known: " + unit_list(units) + ")");
+}
+
+BallastCsv parse(std::string_view text, const std::string& name) {
+  BallastCsv csv;
+  Column mass, deflection, time, speed;
+  bool have_header = false;
+  std::size_t pos = 0;
+  long line_number = 0;
+  while (pos <= text.size()) {
+    const std::size_t nl = text.find('\n', pos);
+    const std::string_view raw =
+        text.substr(pos, nl == std::string_view::npos ? text.npos : nl - pos);
+    pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+    ++line_number;
+    const std::string_view line = trim(raw);
+    if (line.empty() || line.front() == '#') continue;
+    const std::string where = name + ":" + std::to_string(line_number);
+    const std::vector<std::string_view> cells = split(line);
+
+    if (!have_header) {
+      have_header = true;
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        const int idx = static_cast<int>(i);
+        if (match_column(cells[i], "added_mass", kMassUnits, where, idx, &mass)) continue;
+        if (match_column(cells[i], "rear_right_deflection", kDeflectionUnits, where, idx,
+                         &deflection)) {
+          continue;
+        }
+        if (match_column(cells[i], "time", kTimeUnits, where, idx, &time)) continue;
+        if (match_column(cells[i], "speed", kSpeedUnits, where, idx, &speed)) continue;
+      }
+      if (deflection.index < 0) {
+        throw Failure(where + ": no rear_right_deflection_<unit> column (unit one of " +
+                      unit_list(kDeflectionUnits) + ") in the header '" + std::string(line) + "'");
+      }
+      if (mass.index < 0 && time.index < 0) {
+        throw Failure(where +
+                      ": need an added_mass_<unit> column (one row per sample or step) "
+                      "or a time_<unit> column (a recording for plateau detection); header '" +
+                      std::string(line) + "'");
+      }
+      csv.kind = mass.index >= 0 ? BallastCsvKind::kSteps : BallastCsvKind::kSeries;
+      continue;
+    }
+
+    auto cell_of = [&](const Column& c) -> std::string_view {
+      if (static_cast<std::size_t>(c.index) >= cells.size()) {
+        throw Failure(where + ": " + c.name + ": missing (the row has " +
+                      std::to_string(cells.size()) + " fields)");
+      }
+      return cells[static_cast<std::size_t>(c.index)];
+    };
+    // An empty cell gives NaN when allowed; anything else must be a finite number.
+    auto value_of = [&](const Column& c, bool empty_allowed) -> double {
+      const std::string_view cell = cell_of(c);
+      if (cell.empty()) {
+        if (empty_allowed) return std::nan("");
+        throw Failure(where + ": " + c.name + ": empty cell");
+      }
+      double v = 0.0;
+      if (!parse_number(cell, &v)) {
+        throw Failure(where + ": " + c.name + ": '" + std::string(cell) +
+                      "' is not a number (units belong in the column name)");
+      }
+      if (std::isnan(v)) throw Failure(where + ": " + c.name + ": NaN");
+      if (!std::isfinite(v)) throw Failure(where + ": " + c.name + ": infinite value");
+      return v * c.factor;
+    };
+
+    if (csv.kind == BallastCsvKind::kSteps) {
+      BallastSample s;
+      s.added_mass_kg = value_of(mass, false);
+      s.deflection_m = value_of(deflection, false);
+      csv.samples.push_back(s);
+    } else {
+      DeflectionPoint p;
+      p.time_s = value_of(time, true);
+      p.deflection_m = value_of(deflection, true);
+      if (speed.index >= 0) p.speed_mps = value_of(speed, true);
+      if (std::isnan(p.time_s) || std::isnan(p.deflection_m)) {
+        ++csv.skipped_rows;
+        continue;
+      }
+      csv.series.push_back(p);
+    }
+  }
+  if (!have_header) throw Failure(name + ": empty file (no header)");
+  if (csv.kind == BallastCsvKind::kSteps ? csv.samples.empty() : csv.series.empty()) {
+    throw Failure(name + ": no data rows");
+  }
+  return csv;
+}
+
+}  // namespace
+
+BallastCsvRead parse_ballast_csv(std::string_view text, const std::string& name) {
+  BallastCsvRead out;
+  try {
+    out.csv = parse(text, name);
+  } catch (const Failure& f) {
+    out.error = f.message();
+  }
+  return out;
+}
+
+BallastCsvRead read_ballast_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    BallastCsvRead out;
+    out.error = path + ": cannot open";
+    return out;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_ballast_csv(text.str(), path);
+}
+
+std::string parse_mass_list(const std::string& text, std::vector<double>* out) {
+  out->clear();
+  const std::string_view all = trim(text);
+  // first:step:last
+  if (all.find(':') != std::string_view::npos) {
+    std::vector<double> v;
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t colon = all.find(':', start);
+      double x = 0.0;
+      const std::string_view cell =
+          trim(all.substr(start, colon == all.npos ? all.npos : colon - start));
+      if (!parse_number(cell, &x) || !std::isfinite(x)) {
+        return "masses: '" + std::string(cell) + "' is not a number";
+      }
+      v.push_back(x);
+      if (colon == all.npos) break;
+      start = colon + 1;
+    }
+    if (v.size() != 3 || !(v[1] > 0.0) || v[2] < v[0]) {
+      return "masses: a range is FIRST:STEP:LAST with STEP > 0 and LAST >= FIRST, got '" +
+             std::string(all) + "'";
+    }
+    const double count = std::floor((v[2] - v[0]) / v[1] + 1e-9);
+    if (count > 10000) return "masses: range too long";
+    for (int i = 0; i <= static_cast<int>(count); ++i) out->push_back(v[0] + i * v[1]);
+    return "";
+  }
+  for (std::string_view cell : split(all)) {
+    double x = 0.0;
+    if (!parse_number(cell, &x) || !std::isfinite(x)) {
+      return "masses: '" + std::string(cell) + "' is not a number (kg)";
+    }
+    out->push_back(x);
+  }
+  if (out->empty()) return "masses: empty list";
+  return "";
+}
+
+}  // namespace vmass::calibrate

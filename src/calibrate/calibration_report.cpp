@@ -1,0 +1,287 @@
+#include "vmass/calibrate/calibration_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "vmass/core/static_initializer.hpp"
+
+namespace vmass::calibrate {
+namespace {
+
+// Locale-free (snprintf with the "C" numeric locale the tools keep) number for YAML/JSON/text.
+std::string num(double v, const char* format = "%.10g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string json_num(double v) { return std::isfinite(v) ? num(v) : std::string("null"); }
+
+std::string yaml_num(double v) {
+  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
+  if (std::isnan(v)) return ".nan";
+  return num(v);
+}
+
+std::string json_str(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    switch (ch) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(ch) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+          out += buf;
+        } else {
+          out += ch;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string fixed(double v, int decimals, int width = 0) {
+  if (!std::isfinite(v)) {
+    std::string s = std::isnan(v) ? "-" : (v > 0 ? "inf" : "-inf");
+    return std::string(static_cast<std::size_t>(std::max(0, width - static_cast<int>(s.size()))),
+                       ' ') +
+           s;
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%*.*f", width, decimals, v);
+  return buf;
+}
+
+// "value unit  std s  95% [lo, hi]" with a scale applied.
+std::string estimate_text(const Estimate& e, double scale, int decimals, const std::string& unit,
+                          double confidence) {
+  std::string s = fixed(e.value * scale, decimals) + " " + unit;
+  if (std::isfinite(e.std)) {
+    s += "   std " + fixed(e.std * scale, decimals) + "   " + num(100.0 * confidence, "%g") +
+         "% [" + fixed(e.low * scale, decimals) + ", " + fixed(e.high * scale, decimals) + "]";
+  } else {
+    s += "   std not estimable";
+  }
+  return s;
+}
+
+void json_estimate(std::string* out, const std::string& key, const Estimate& e, double scale,
+                   const std::string& unit_suffix) {
+  *out += json_str(key + unit_suffix) + ": " + json_num(e.value * scale) + ", ";
+  *out += json_str(key + "_std" + unit_suffix) + ": " + json_num(e.std * scale) + ", ";
+  *out += json_str(key + "_ci_low" + unit_suffix) + ": " + json_num(e.low * scale) + ", ";
+  *out += json_str(key + "_ci_high" + unit_suffix) + ": " + json_num(e.high * scale);
+}
+
+void json_stats(std::string* out, const FitStats& s) {
+  *out += "\"steps_used\": " + std::to_string(s.steps_used) +
+          ", \"robust_scale_mm\": " + json_num(s.robust_scale_mm) +
+          ", \"residual_std_mm\": " + json_num(s.residual_std_mm) +
+          ", \"effective_dof\": " + json_num(s.effective_dof) + ", \"cost\": " + json_num(s.cost) +
+          ", \"iterations\": " + std::to_string(s.iterations) +
+          ", \"termination\": " + json_str(s.termination);
+}
+
+}  // namespace
+
+std::vector<MassCheckRow> mass_check(const SuspensionCalibration& calibration,
+                                     const VehicleParams& vehicle) {
+  const StaticInitParams params;
+  const StaticInitializer linear(vehicle, calibration.linear_suspension_params(), params);
+  const StaticInitializer written(vehicle, calibration.suspension_params(), params);
+  std::vector<MassCheckRow> rows;
+  for (const StepResult& s : calibration.steps) {
+    MassCheckRow r;
+    r.added_mass_kg = s.step.added_mass_kg;
+    r.true_mass_kg = vehicle.empty_mass_kg + s.step.added_mass_kg;
+    r.deflection_m = s.step.deflection_m;
+    r.linear_mass_kg = linear.mass_from_deflection_kg(s.step.deflection_m);
+    r.progressive_mass_kg = written.mass_from_deflection_kg(s.step.deflection_m);
+    r.linear_error = (r.linear_mass_kg - r.true_mass_kg) / r.true_mass_kg;
+    r.progressive_error = (r.progressive_mass_kg - r.true_mass_kg) / r.true_mass_kg;
+    r.beyond_linear_range = s.step.added_mass_kg > calibration.linear_range_kg;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::string suspension_yaml(const SuspensionCalibration& calibration,
+                            const std::vector<std::string>& header_comment) {
+  const SuspensionParams p = calibration.suspension_params();
+  const bool prog = calibration.progressive.detected;
+  const Estimate& c =
+      prog ? calibration.progressive.stiffness_n_per_m : calibration.linear.stiffness_n_per_m;
+  const Estimate& z0 =
+      prog ? calibration.progressive.zero_offset_m : calibration.linear.zero_offset_m;
+  auto std_comment = [](const Estimate& e, double scale, const char* unit) {
+    return std::isfinite(e.std) ? "  # std " + num(e.std * scale, "%.3g") + " " + unit
+                                : std::string();
+  };
+  std::string out;
+  for (const std::string& line : header_comment) out += "# " + line + "\n";
+  out += "suspension:\n";
+  out +=
+      "  stiffness_n_per_m: " + yaml_num(p.stiffness_n_per_m) + std_comment(c, 1.0, "N/m") + "\n";
+  out +=
+      "  empty_deflection_m: " + yaml_num(p.empty_deflection_m) + std_comment(z0, 1.0, "m") + "\n";
+  out += "  progressive_knee_m: " + yaml_num(p.progressive_knee_m) +
+         (prog ? std_comment(calibration.progressive.knee_m, 1.0, "m") : "  # no bump stop") + "\n";
+  out += "  progressive_rate_n_per_m2: " + yaml_num(p.progressive_rate_n_per_m2) +
+         (prog ? std_comment(calibration.progressive.rate_n_per_m2, 1.0, "N/m^2") : "") + "\n";
+  out += "  linear_range_kg: " + yaml_num(p.linear_range_kg > 0.0 ? p.linear_range_kg : 1e-3) +
+         (p.linear_range_kg > 0.0 ? "" : "  # no step within tolerance") + "\n";
+  out += "  calibrated_range_kg: " + yaml_num(p.calibrated_range_kg) + "\n";
+  return out;
+}
+
+std::string calibration_json(const SuspensionCalibration& cal,
+                             const std::vector<MassCheckRow>& mass_rows) {
+  const LinearFit& lin = cal.linear;
+  const ProgressiveFit& pr = cal.progressive;
+  std::string o = "{";
+  json_estimate(&o, "stiffness", lin.stiffness_n_per_m, 1.0, "_n_per_m");
+  o += ", ";
+  json_estimate(&o, "zero_offset", lin.zero_offset_m, 1e3, "_mm");
+  o += ", \"linear_range_kg\": " + json_num(cal.linear_range_kg);
+  o += ", \"calibrated_range_kg\": " + json_num(cal.calibrated_range_kg);
+  o += ", \"linear_tolerance\": " + json_num(cal.linear_tolerance);
+  o += ", \"linear\": {";
+  json_stats(&o, lin.stats);
+  o += "}, \"progressive\": {\"detected\": " + std::string(pr.detected ? "true" : "false") +
+       ", \"reason\": " + json_str(pr.reason) + ", ";
+  json_estimate(&o, "stiffness", pr.stiffness_n_per_m, 1.0, "_n_per_m");
+  o += ", ";
+  json_estimate(&o, "zero_offset", pr.zero_offset_m, 1e3, "_mm");
+  o += ", ";
+  json_estimate(&o, "knee", pr.knee_m, 1e3, "_mm");
+  o += ", ";
+  json_estimate(&o, "rate", pr.rate_n_per_m2, 1.0, "_n_per_m2");
+  o += ", \"f_statistic\": " + json_num(pr.f_statistic) +
+       ", \"f_critical\": " + json_num(pr.f_critical) + ", ";
+  json_stats(&o, pr.stats);
+  o += "}, \"geometry\": {\"wheelbase_m\": " + json_num(cal.geometry.wheelbase_m) +
+       ", \"cg_to_front_axle_m\": " + json_num(cal.geometry.cg_to_front_axle_m) +
+       ", \"gravity_mps2\": " + json_num(cal.geometry.gravity_mps2) +
+       ", \"wheel_force_per_kg_n\": " + json_num(cal.geometry.wheel_force_per_kg()) + "}";
+  const SuspensionParams p = cal.suspension_params();
+  o += ", \"suspension\": {\"stiffness_n_per_m\": " + json_num(p.stiffness_n_per_m) +
+       ", \"empty_deflection_m\": " + json_num(p.empty_deflection_m) +
+       ", \"progressive_knee_m\": " + json_num(p.progressive_knee_m) +
+       ", \"progressive_rate_n_per_m2\": " + json_num(p.progressive_rate_n_per_m2) +
+       ", \"linear_range_kg\": " + json_num(p.linear_range_kg) +
+       ", \"calibrated_range_kg\": " + json_num(p.calibrated_range_kg) + "}";
+  o += ", \"steps\": [";
+  for (std::size_t i = 0; i < cal.steps.size(); ++i) {
+    const StepResult& s = cal.steps[i];
+    o += std::string(i ? ", " : "") + "{\"added_mass_kg\": " + json_num(s.step.added_mass_kg) +
+         ", \"force_n\": " + json_num(s.force_n) +
+         ", \"deflection_mm\": " + json_num(s.step.deflection_m * 1e3) +
+         ", \"deflection_std_mm\": " + json_num(s.step.deflection_std_m * 1e3) +
+         ", \"samples\": " + std::to_string(s.step.sample_count) +
+         ", \"start_s\": " + json_num(s.step.start_s) + ", \"end_s\": " + json_num(s.step.end_s) +
+         ", \"linear_residual_mm\": " + json_num(s.linear_residual_m * 1e3) +
+         ", \"progressive_residual_mm\": " + json_num(s.progressive_residual_m * 1e3) +
+         ", \"in_linear_fit\": " + (s.in_linear_fit ? "true" : "false") +
+         ", \"outlier\": " + (s.outlier ? "true" : "false") +
+         ", \"linear_mass_error\": " + json_num(s.linear_mass_error) + "}";
+  }
+  o += "], \"mass_check\": [";
+  for (std::size_t i = 0; i < mass_rows.size(); ++i) {
+    const MassCheckRow& r = mass_rows[i];
+    o += std::string(i ? ", " : "") + "{\"added_mass_kg\": " + json_num(r.added_mass_kg) +
+         ", \"true_mass_kg\": " + json_num(r.true_mass_kg) +
+         ", \"linear_mass_kg\": " + json_num(r.linear_mass_kg) +
+         ", \"linear_error\": " + json_num(r.linear_error) +
+         ", \"progressive_mass_kg\": " + json_num(r.progressive_mass_kg) +
+         ", \"progressive_error\": " + json_num(r.progressive_error) +
+         ", \"beyond_linear_range\": " + (r.beyond_linear_range ? "true" : "false") + "}";
+  }
+  o += "], \"warnings\": [";
+  for (std::size_t i = 0; i < cal.warnings.size(); ++i) {
+    o += std::string(i ? ", " : "") + json_str(cal.warnings[i]);
+  }
+  o += "]}";
+  return o;
+}
+
+std::string calibration_text(const SuspensionCalibration& cal,
+                             const std::vector<MassCheckRow>& mass_rows) {
+  const double conf = 0.95;
+  const LinearFit& lin = cal.linear;
+  const ProgressiveFit& pr = cal.progressive;
+  std::string o;
+  o += "rear-right suspension from " + std::to_string(cal.steps.size()) + " ballast steps (" +
+       num(cal.steps.front().step.added_mass_kg, "%g") + " .. " +
+       num(cal.steps.back().step.added_mass_kg, "%g") + " kg)\n";
+  o += "mass to force     dF_rr = dM g l_f / (2 l) = " +
+       fixed(cal.geometry.wheel_force_per_kg(), 4) + " N/kg  (l " +
+       fixed(cal.geometry.wheelbase_m, 3) + " m, l_f " + fixed(cal.geometry.cg_to_front_axle_m, 3) +
+       " m, g " + num(cal.geometry.gravity_mps2, "%g") + " m/s^2)\n\n";
+  o += "linear model (eq. 3) z = z0 + dF / c, " + std::to_string(lin.stats.steps_used) +
+       " steps at or below the knee\n";
+  o += "  stiffness       " + estimate_text(lin.stiffness_n_per_m, 1.0, 1, "N/m", conf) + "\n";
+  o += "  zero offset     " + estimate_text(lin.zero_offset_m, 1e3, 4, "mm", conf) + "\n";
+  o += "  residual std    " + fixed(lin.stats.residual_std_mm, 4) + " mm (Cauchy scale " +
+       fixed(lin.stats.robust_scale_mm, 4) + " mm, dof " + fixed(lin.stats.effective_dof, 1) +
+       ", " + lin.stats.termination + ")\n";
+  o += "progressive model dF = c (z - z0) + k2 max(0, z - z_knee)^2: " +
+       std::string(pr.detected ? "bump stop detected" : "no bump stop (" + pr.reason + ")") + "\n";
+  if (std::isfinite(pr.stiffness_n_per_m.value)) {
+    o += "  stiffness       " + estimate_text(pr.stiffness_n_per_m, 1.0, 1, "N/m", conf) + "\n";
+    o += "  zero offset     " + estimate_text(pr.zero_offset_m, 1e3, 4, "mm", conf) + "\n";
+    o += "  knee            " + estimate_text(pr.knee_m, 1e3, 3, "mm", conf) + "\n";
+    o += "  rate            " + estimate_text(pr.rate_n_per_m2, 1e-6, 4, "N/mm^2", conf) + "\n";
+    o += "  residual std    " + fixed(pr.stats.residual_std_mm, 4) + " mm (Cauchy scale " +
+         fixed(pr.stats.robust_scale_mm, 4) + " mm, dof " + fixed(pr.stats.effective_dof, 1) +
+         "); F " + fixed(pr.f_statistic, 1) + " vs critical " + fixed(pr.f_critical, 2) + "\n";
+  }
+  o += "linear range      " + num(cal.linear_range_kg, "%g") +
+       " kg (largest load the linear model reproduces within " +
+       num(100.0 * cal.linear_tolerance, "%g") + " %)\n";
+  o += "calibrated range  " + num(cal.calibrated_range_kg, "%g") + " kg\n\n";
+
+  o += "per step    added_kg   force_N  deflection_mm  samples  lin_res_mm  prog_res_mm  "
+       "lin_load_err_%  notes\n";
+  for (const StepResult& s : cal.steps) {
+    std::string notes;
+    if (s.outlier) notes += "outlier ";
+    if (!s.in_linear_fit) notes += "beyond-knee ";
+    o += "          " + fixed(s.step.added_mass_kg, 1, 10) + fixed(s.force_n, 1, 10) +
+         fixed(s.step.deflection_m * 1e3, 4, 15) + std::string(2, ' ') +
+         fixed(s.step.sample_count, 0, 7) + fixed(s.linear_residual_m * 1e3, 4, 12) +
+         fixed(s.progressive_residual_m * 1e3, 4, 13) +
+         (s.step.added_mass_kg != 0.0 ? fixed(100.0 * s.linear_mass_error, 2, 16)
+                                      : std::string(16 - 1, ' ') + "-") +
+         "  " + notes + "\n";
+  }
+  if (!mass_rows.empty()) {
+    o += "\nstatic initialisation, eq. (3) (StaticInitializer::mass_from_deflection_kg)\n";
+    o += "   added_kg   true_kg   linear_kg  lin_err_%  progressive_kg  prog_err_%\n";
+    for (const MassCheckRow& r : mass_rows) {
+      o += fixed(r.added_mass_kg, 1, 11) + fixed(r.true_mass_kg, 1, 10) +
+           fixed(r.linear_mass_kg, 1, 12) + fixed(100.0 * r.linear_error, 2, 11) +
+           fixed(r.progressive_mass_kg, 1, 16) + fixed(100.0 * r.progressive_error, 2, 12) +
+           (r.beyond_linear_range ? "  beyond linear range" : "") + "\n";
+    }
+  }
+  if (!cal.warnings.empty()) {
+    o += "\n";
+    for (const std::string& w : cal.warnings) o += "warning: " + w + "\n";
+  }
+  return o;
+}
+
+}  // namespace vmass::calibrate

@@ -1,0 +1,544 @@
+// The rear-suspension fit of suspension_fit.hpp. The only translation unit of the library that
+// includes Ceres.
+#include "vmass/calibrate/suspension_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+
+#include <ceres/ceres.h>
+#include <Eigen/Dense>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/distributions/students_t.hpp>
+
+#include "vmass/calibrate/suspension_residuals.hpp"
+#include "vmass/core/param_check.hpp"
+
+namespace vmass::calibrate {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMinStiffnessNPerMm = 1e-6;
+constexpr int kMaxRobustPasses = 6;
+
+// Step data in the fit's units (mm, N), sorted by load.
+struct Data {
+  std::vector<double> force_n;
+  std::vector<double> z_mm;
+  std::size_t size() const { return z_mm.size(); }
+};
+
+struct LinearParams {
+  double z0_mm = 0.0;
+  double c_n_per_mm = 1.0;
+};
+
+struct ProgressiveParams {
+  double z0_mm = 0.0;
+  double c_n_per_mm = 1.0;
+  double d_mm = 0.0;  ///< knee offset above z0
+  double k2_n_per_mm2 = 0.0;
+};
+
+// Outcome of one solve.
+struct Solve {
+  bool usable = false;
+  double cost = 0.0;
+  int iterations = 0;
+  std::string termination;
+};
+
+ceres::Solver::Options solver_options() {
+  ceres::Solver::Options o;
+  o.linear_solver_type = ceres::DENSE_QR;
+  o.minimizer_type = ceres::TRUST_REGION;
+  o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  o.max_num_iterations = 200;
+  o.function_tolerance = 1e-14;
+  o.gradient_tolerance = 1e-14;
+  o.parameter_tolerance = 1e-12;
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  o.num_threads = 1;
+  return o;
+}
+
+ceres::LossFunction* cauchy(double scale_mm) {
+  return scale_mm > 0.0 ? new ceres::CauchyLoss(scale_mm) : nullptr;
+}
+
+// Fills *cov with the unscaled (J^T J)^-1 of the problem at its current parameter values, in
+// the order of `blocks`. False when Ceres finds it rank deficient.
+bool covariance_of(ceres::Problem* problem, const std::vector<const double*>& blocks,
+                   Eigen::MatrixXd* cov) {
+  ceres::Covariance::Options co;
+  co.algorithm_type = ceres::DENSE_SVD;
+  ceres::Covariance covariance(co);
+  std::vector<std::pair<const double*, const double*>> pairs;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    for (std::size_t j = i; j < blocks.size(); ++j) pairs.emplace_back(blocks[i], blocks[j]);
+  }
+  if (!covariance.Compute(pairs, problem)) return false;
+  const int p = static_cast<int>(blocks.size());
+  cov->resize(p, p);
+  if (!covariance.GetCovarianceMatrix(blocks, cov->data())) return false;
+  return cov->allFinite();
+}
+
+void finish(ceres::Problem* problem, Solve* out) {
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options(), problem, &summary);
+  out->usable = summary.IsSolutionUsable();
+  out->cost = summary.final_cost;
+  out->iterations = static_cast<int>(summary.iterations.size());
+  out->termination = ceres::TerminationTypeToString(summary.termination_type);
+}
+
+Solve solve_linear(const Data& data, const std::vector<std::size_t>& idx, double scale_mm,
+                   LinearParams* p) {
+  ceres::Problem problem;
+  for (std::size_t k : idx) {
+    problem.AddResidualBlock(LinearDeflectionResidual::Create(data.force_n[k], data.z_mm[k]),
+                             cauchy(scale_mm), &p->z0_mm, &p->c_n_per_mm);
+  }
+  problem.SetParameterLowerBound(&p->c_n_per_mm, 0, kMinStiffnessNPerMm);
+  Solve out;
+  finish(&problem, &out);
+  return out;
+}
+
+Solve solve_progressive(const Data& data, double scale_mm, bool knee_fixed, ProgressiveParams* p) {
+  ceres::Problem problem;
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    problem.AddResidualBlock(ProgressiveDeflectionResidual::Create(data.force_n[k], data.z_mm[k]),
+                             cauchy(scale_mm), &p->z0_mm, &p->c_n_per_mm, &p->d_mm,
+                             &p->k2_n_per_mm2);
+  }
+  problem.SetParameterLowerBound(&p->c_n_per_mm, 0, kMinStiffnessNPerMm);
+  problem.SetParameterLowerBound(&p->k2_n_per_mm2, 0, 0.0);
+  if (knee_fixed) {
+    problem.SetParameterBlockConstant(&p->d_mm);
+  } else {
+    problem.SetParameterLowerBound(&p->d_mm, 0, 0.0);
+  }
+  Solve out;
+  finish(&problem, &out);
+  return out;
+}
+
+double linear_prediction(const LinearParams& p, double force_n) {
+  return p.z0_mm + force_n / p.c_n_per_mm;
+}
+
+double progressive_prediction(const ProgressiveParams& p, double force_n) {
+  return ProgressiveDeflectionResidual::predicted_deflection_mm(force_n, p.z0_mm, p.c_n_per_mm,
+                                                                p.d_mm, p.k2_n_per_mm2);
+}
+
+double median_abs(const std::vector<double>& r) {
+  std::vector<double> a(r.size());
+  std::transform(r.begin(), r.end(), a.begin(), [](double x) { return std::abs(x); });
+  if (a.empty()) return 0.0;
+  std::sort(a.begin(), a.end());
+  const std::size_t m = a.size() / 2;
+  return a.size() % 2 ? a[m] : 0.5 * (a[m - 1] + a[m]);
+}
+
+double next_scale(const std::vector<double>& residuals, const SuspensionFitOptions& o) {
+  return std::max(o.min_robust_scale_mm, 3.0 * 1.4826 * median_abs(residuals));
+}
+
+double cauchy_weight(double r, double scale_mm) {
+  return scale_mm > 0.0 ? 1.0 / (1.0 + (r / scale_mm) * (r / scale_mm)) : 1.0;
+}
+
+// Closed-form least squares of the linear model in force space, F = c (z - z0), over idx: the
+// starting point of the Ceres fits.
+LinearParams linear_start(const Data& d, const std::vector<std::size_t>& idx) {
+  double sz = 0, sf = 0, szz = 0, szf = 0;
+  for (std::size_t k : idx) {
+    sz += d.z_mm[k];
+    sf += d.force_n[k];
+    szz += d.z_mm[k] * d.z_mm[k];
+    szf += d.z_mm[k] * d.force_n[k];
+  }
+  const double n = static_cast<double>(idx.size());
+  const double den = n * szz - sz * sz;
+  LinearParams p;
+  p.c_n_per_mm = den > 0.0 ? (n * szf - sz * sf) / den : 1.0;
+  if (!(p.c_n_per_mm > kMinStiffnessNPerMm)) p.c_n_per_mm = 1.0;
+  p.z0_mm = (sz - sf / p.c_n_per_mm) / n;
+  return p;
+}
+
+// Closed-form force-space least squares with the knee at an absolute position: F = c z - c z0
+// + k2 max(0, z - knee)^2 is linear in (c, c z0, k2). Starting point of a grid solve.
+bool progressive_start(const Data& d, double knee_mm, ProgressiveParams* p) {
+  const int n = static_cast<int>(d.size());
+  Eigen::MatrixXd a(n, 3);
+  Eigen::VectorXd f(n);
+  for (int k = 0; k < n; ++k) {
+    const double z = d.z_mm[static_cast<std::size_t>(k)];
+    const double h = std::max(0.0, z - knee_mm);
+    a(k, 0) = z;
+    a(k, 1) = -1.0;
+    a(k, 2) = h * h;
+    f(k) = d.force_n[static_cast<std::size_t>(k)];
+  }
+  const Eigen::Vector3d x = a.colPivHouseholderQr().solve(f);
+  if (!x.allFinite() || !(x(0) > kMinStiffnessNPerMm)) return false;
+  p->c_n_per_mm = x(0);
+  p->z0_mm = x(1) / x(0);
+  p->k2_n_per_mm2 = std::max(0.0, x(2));
+  p->d_mm = knee_mm - p->z0_mm;
+  return p->d_mm >= 0.0;
+}
+
+struct Uncertainty {
+  double residual_std = kNaN;
+  double dof = 0.0;
+  double t = kNaN;
+};
+
+Uncertainty uncertainty(const std::vector<double>& residuals, double scale_mm, int parameters,
+                        double confidence) {
+  double sw = 0.0, swr2 = 0.0;
+  for (double r : residuals) {
+    const double w = cauchy_weight(r, scale_mm);
+    sw += w;
+    swr2 += w * r * r;
+  }
+  Uncertainty u;
+  u.dof = sw - parameters;
+  if (u.dof < 0.5) return u;
+  u.residual_std = std::sqrt(swr2 / u.dof);
+  u.t = boost::math::quantile(boost::math::students_t(u.dof), 0.5 * (1.0 + confidence));
+  return u;
+}
+
+Estimate estimate(double value, double variance_unscaled, const Uncertainty& u, double to_si,
+                  bool covariance_ok) {
+  Estimate e;
+  e.value = value * to_si;
+  if (!covariance_ok || !std::isfinite(u.residual_std) || !(variance_unscaled >= 0.0)) return e;
+  e.std = std::sqrt(variance_unscaled) * u.residual_std * to_si;
+  e.low = e.value - u.t * e.std;
+  e.high = e.value + u.t * e.std;
+  return e;
+}
+
+std::string fmt(const char* format, double v) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+}  // namespace
+
+std::string SuspensionFitOptions::validate() const {
+  ParamCheck c("fit");
+  c.in_open_range("linear_tolerance", linear_tolerance, 0.0, 1.0);
+  c.non_negative("robust_scale_mm", robust_scale_mm);
+  c.positive("min_robust_scale_mm", min_robust_scale_mm);
+  c.at_least("knee_grid_per_gap", knee_grid_per_gap, 1);
+  c.at_least("min_steps_below_knee", min_steps_below_knee, 3);
+  c.at_least("min_steps_beyond_knee", min_steps_beyond_knee, 2);
+  c.in_open_range("progressive_significance", progressive_significance, 0.0, 1.0);
+  c.in_open_range("confidence", confidence, 0.0, 1.0);
+  return c.message();
+}
+
+SuspensionParams SuspensionCalibration::linear_suspension_params() const {
+  SuspensionParams s;
+  s.stiffness_n_per_m = linear.stiffness_n_per_m.value;
+  s.empty_deflection_m = linear.zero_offset_m.value;
+  s.linear_range_kg = linear_range_kg;
+  s.calibrated_range_kg = calibrated_range_kg;
+  return s;
+}
+
+SuspensionParams SuspensionCalibration::suspension_params() const {
+  if (!progressive.detected) return linear_suspension_params();
+  SuspensionParams s;
+  s.stiffness_n_per_m = progressive.stiffness_n_per_m.value;
+  s.empty_deflection_m = progressive.zero_offset_m.value;
+  s.progressive_knee_m = progressive.knee_m.value;
+  s.progressive_rate_n_per_m2 = progressive.rate_n_per_m2.value;
+  s.linear_range_kg = linear_range_kg;
+  s.calibrated_range_kg = calibrated_range_kg;
+  return s;
+}
+
+SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
+                                   const LoadGeometry& geometry,
+                                   const SuspensionFitOptions& options) {
+  SuspensionFitResult result;
+  if (std::string m = options.validate(); !m.empty()) {
+    result.error = m;
+    return result;
+  }
+  if (std::string m = geometry.validate(); !m.empty()) {
+    result.error = m;
+    return result;
+  }
+  if (std::string m = check_steps(input_steps); !m.empty()) {
+    result.error = m;
+    return result;
+  }
+  std::vector<BallastStep> steps = input_steps;
+  std::stable_sort(steps.begin(), steps.end(), [](const BallastStep& a, const BallastStep& b) {
+    return a.added_mass_kg < b.added_mass_kg;
+  });
+
+  SuspensionCalibration cal;
+  cal.geometry = geometry;
+  cal.linear_tolerance = options.linear_tolerance;
+  Data data;
+  for (const BallastStep& s : steps) {
+    data.force_n.push_back(geometry.wheel_force_n(s.added_mass_kg));
+    data.z_mm.push_back(s.deflection_m * 1e3);
+  }
+  const std::size_t n = data.size();
+  std::vector<std::size_t> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  const double first_scale =
+      std::max(options.min_robust_scale_mm, 0.01 * (data.z_mm.back() - data.z_mm.front()));
+  const bool fixed_scale = options.robust_scale_mm > 0.0;
+
+  // ---- Progressive model: knee on a grid, then refined; the robust scale re-estimated.
+  const std::size_t below = static_cast<std::size_t>(options.min_steps_below_knee);
+  const std::size_t beyond = static_cast<std::size_t>(options.min_steps_beyond_knee);
+  ProgressiveParams prog;
+  bool have_prog = false;
+  double prog_scale = fixed_scale ? options.robust_scale_mm : first_scale;
+  Solve prog_solve;
+  if (n < below + beyond) {
+    cal.progressive.reason = "needs at least " + std::to_string(below + beyond) +
+                             " steps (fit.min_steps_below_knee + fit.min_steps_beyond_knee)";
+  } else {
+    for (int pass = 0;; ++pass) {
+      // Grid over the knee with the knee held, at this robust scale.
+      bool found = false;
+      ProgressiveParams best;
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (std::size_t j = below; j + beyond <= n; ++j) {  // knee between steps j-1 and j
+        for (int g = 0; g < options.knee_grid_per_gap; ++g) {
+          const double knee_mm = data.z_mm[j - 1] + (g + 0.5) / options.knee_grid_per_gap *
+                                                        (data.z_mm[j] - data.z_mm[j - 1]);
+          ProgressiveParams p;
+          if (!progressive_start(data, knee_mm, &p)) {
+            const LinearParams l =
+                linear_start(data, std::vector<std::size_t>(all.begin(), all.begin() + j));
+            p.z0_mm = l.z0_mm;
+            p.c_n_per_mm = l.c_n_per_mm;
+            p.d_mm = std::max(0.0, knee_mm - l.z0_mm);
+            p.k2_n_per_mm2 = 0.0;
+          }
+          const Solve s = solve_progressive(data, prog_scale, true, &p);
+          if (s.usable && s.cost < best_cost) {
+            best_cost = s.cost;
+            best = p;
+            found = true;
+          }
+        }
+      }
+      if (!found) {
+        have_prog = false;
+        cal.progressive.reason = "no knee candidate gave a usable fit";
+        break;
+      }
+      // Refine all four parameters from the best grid point.
+      prog = best;
+      prog_solve = solve_progressive(data, prog_scale, false, &prog);
+      have_prog = prog_solve.usable;
+      if (!have_prog) {
+        cal.progressive.reason =
+            "Ceres could not make the progressive fit usable (" + prog_solve.termination + ")";
+        break;
+      }
+      if (fixed_scale || pass + 1 == kMaxRobustPasses) break;
+      std::vector<double> r(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        r[k] = data.z_mm[k] - progressive_prediction(prog, data.force_n[k]);
+      }
+      const double next = next_scale(r, options);
+      if (std::abs(next - prog_scale) <= 0.1 * prog_scale) break;
+      prog_scale = next;
+    }
+  }
+
+  if (have_prog) {
+    std::vector<double> r(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      r[k] = data.z_mm[k] - progressive_prediction(prog, data.force_n[k]);
+    }
+    const Uncertainty u = uncertainty(r, prog_scale, 4, options.confidence);
+    ProgressiveFit& pf = cal.progressive;
+    pf.stats.steps_used = static_cast<int>(n);
+    pf.stats.robust_scale_mm = prog_scale;
+    pf.stats.residual_std_mm = u.residual_std;
+    pf.stats.effective_dof = u.dof;
+    pf.stats.cost = prog_solve.cost;
+    pf.stats.iterations = prog_solve.iterations;
+    pf.stats.termination = prog_solve.termination;
+
+    // Significance against the linear model over all steps, at the same robust scale.
+    LinearParams lin_all = linear_start(data, all);
+    const Solve lin_all_solve = solve_linear(data, all, prog_scale, &lin_all);
+    const double knee_mm = prog.z0_mm + prog.d_mm;
+    const long steps_beyond =
+        std::count_if(data.z_mm.begin(), data.z_mm.end(), [&](double z) { return z > knee_mm; });
+    if (!lin_all_solve.usable) {
+      pf.reason = "the linear comparison fit failed (" + lin_all_solve.termination + ")";
+    } else if (!(prog.k2_n_per_mm2 > 0.0)) {
+      pf.reason = "the best progressive rate is 0 (no bump stop in the data)";
+    } else if (steps_beyond < static_cast<long>(beyond)) {
+      pf.reason = "only " + std::to_string(steps_beyond) + " step(s) beyond the fitted knee";
+    } else if (const double top_n = data.force_n.back();
+               prog.z0_mm + top_n / prog.c_n_per_mm - progressive_prediction(prog, top_n) <=
+               2.0 * prog_scale) {
+      pf.reason =
+          "the fitted bump stop changes the top step's deflection by less than twice "
+          "the robust scale";
+    } else {
+      const double dof2 = static_cast<double>(n) - 4.0;
+      pf.f_statistic =
+          prog_solve.cost > 0.0
+              ? ((lin_all_solve.cost - prog_solve.cost) / 2.0) / (prog_solve.cost / dof2)
+              : (lin_all_solve.cost > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+      pf.f_critical = boost::math::quantile(boost::math::fisher_f(2.0, dof2),
+                                            1.0 - options.progressive_significance);
+      if (pf.f_statistic > pf.f_critical) {
+        pf.detected = true;
+      } else {
+        pf.reason = "the progressive model is not significantly better than the linear one (F = " +
+                    fmt("%.3g", pf.f_statistic) + " <= " + fmt("%.3g", pf.f_critical) + ")";
+      }
+    }
+    // Parameter uncertainty only for an accepted bump stop (without one, d and k2 are not
+    // identifiable and the covariance is singular).
+    Eigen::MatrixXd c;
+    bool ok = false;
+    if (pf.detected) {
+      ProgressiveParams at = prog;
+      ceres::Problem problem;
+      for (std::size_t k = 0; k < n; ++k) {
+        problem.AddResidualBlock(
+            ProgressiveDeflectionResidual::Create(data.force_n[k], data.z_mm[k]),
+            cauchy(prog_scale), &at.z0_mm, &at.c_n_per_mm, &at.d_mm, &at.k2_n_per_mm2);
+      }
+      ok = covariance_of(&problem, {&at.z0_mm, &at.c_n_per_mm, &at.d_mm, &at.k2_n_per_mm2}, &c);
+      if (!ok) cal.warnings.push_back("the progressive model's covariance is singular");
+    }
+    pf.zero_offset_m = estimate(prog.z0_mm, ok ? c(0, 0) : kNaN, u, 1e-3, ok);
+    pf.stiffness_n_per_m = estimate(prog.c_n_per_mm, ok ? c(1, 1) : kNaN, u, 1e3, ok);
+    // z_knee = z0 + d: var = var z0 + var d + 2 cov(z0, d).
+    pf.knee_m = estimate(prog.z0_mm + prog.d_mm, ok ? c(0, 0) + c(2, 2) + 2.0 * c(0, 2) : kNaN, u,
+                         1e-3, ok);
+    pf.rate_n_per_m2 = estimate(prog.k2_n_per_mm2, ok ? c(3, 3) : kNaN, u, 1e6, ok);
+  }
+
+  // ---- Linear model on the steps at or below the knee (all steps without a bump stop).
+  std::vector<std::size_t> lin_idx;
+  const double knee_mm =
+      cal.progressive.detected ? prog.z0_mm + prog.d_mm : std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (data.z_mm[k] <= knee_mm) lin_idx.push_back(k);
+  }
+  LinearParams lin = linear_start(data, lin_idx);
+  double lin_scale = fixed_scale ? options.robust_scale_mm : first_scale;
+  Solve lin_solve;
+  for (int pass = 0;; ++pass) {
+    lin_solve = solve_linear(data, lin_idx, lin_scale, &lin);
+    if (!lin_solve.usable || fixed_scale || pass + 1 == kMaxRobustPasses) break;
+    std::vector<double> r;
+    for (std::size_t k : lin_idx)
+      r.push_back(data.z_mm[k] - linear_prediction(lin, data.force_n[k]));
+    const double next = next_scale(r, options);
+    if (std::abs(next - lin_scale) <= 0.1 * lin_scale) break;
+    lin_scale = next;
+  }
+  if (!lin_solve.usable) {
+    result.error = "Ceres could not make the linear fit usable (" + lin_solve.termination + ")";
+    return result;
+  }
+  {
+    std::vector<double> r;
+    for (std::size_t k : lin_idx)
+      r.push_back(data.z_mm[k] - linear_prediction(lin, data.force_n[k]));
+    const Uncertainty u = uncertainty(r, lin_scale, 2, options.confidence);
+    Eigen::MatrixXd c;
+    bool ok = false;
+    {
+      LinearParams at = lin;
+      ceres::Problem problem;
+      for (std::size_t k : lin_idx) {
+        problem.AddResidualBlock(LinearDeflectionResidual::Create(data.force_n[k], data.z_mm[k]),
+                                 cauchy(lin_scale), &at.z0_mm, &at.c_n_per_mm);
+      }
+      ok = covariance_of(&problem, {&at.z0_mm, &at.c_n_per_mm}, &c);
+    }
+    cal.linear.zero_offset_m = estimate(lin.z0_mm, ok ? c(0, 0) : kNaN, u, 1e-3, ok);
+    cal.linear.stiffness_n_per_m = estimate(lin.c_n_per_mm, ok ? c(1, 1) : kNaN, u, 1e3, ok);
+    cal.linear.stats.steps_used = static_cast<int>(lin_idx.size());
+    cal.linear.stats.robust_scale_mm = lin_scale;
+    cal.linear.stats.residual_std_mm = u.residual_std;
+    cal.linear.stats.effective_dof = u.dof;
+    cal.linear.stats.cost = lin_solve.cost;
+    cal.linear.stats.iterations = lin_solve.iterations;
+    cal.linear.stats.termination = lin_solve.termination;
+    if (!std::isfinite(cal.linear.stiffness_n_per_m.std)) {
+      cal.warnings.push_back(
+          "the linear stiffness's standard deviation is not estimable (too few steps below the "
+          "knee, or a singular covariance)");
+    }
+  }
+
+  // ---- Per step: residuals, outliers, the linear model's mass error; the ranges.
+  const double per_kg = geometry.wheel_force_per_kg();
+  for (std::size_t k = 0; k < n; ++k) {
+    StepResult s;
+    s.step = steps[k];
+    s.force_n = data.force_n[k];
+    s.linear_residual_m = (data.z_mm[k] - linear_prediction(lin, data.force_n[k])) * 1e-3;
+    if (have_prog) {
+      s.progressive_residual_m =
+          (data.z_mm[k] - progressive_prediction(prog, data.force_n[k])) * 1e-3;
+    }
+    s.in_linear_fit = data.z_mm[k] <= knee_mm;
+    s.outlier = cal.progressive.detected
+                    ? std::abs(s.progressive_residual_m * 1e3) > 2.0 * prog_scale
+                    : std::abs(s.linear_residual_m * 1e3) > 2.0 * lin_scale;
+    const double m = steps[k].added_mass_kg;
+    const double m_lin = lin.c_n_per_mm * (data.z_mm[k] - lin.z0_mm) / per_kg;
+    s.linear_mass_error = m != 0.0 ? (m_lin - m) / std::abs(m) : 0.0;
+    if (s.outlier) {
+      cal.warnings.push_back(
+          "step " + fmt("%g kg", m) + " is an outlier (residual " +
+          fmt("%.3f mm",
+              (cal.progressive.detected ? s.progressive_residual_m : s.linear_residual_m) * 1e3) +
+          "); the robust loss down-weighted it");
+    }
+    cal.steps.push_back(s);
+  }
+  cal.calibrated_range_kg = steps.back().added_mass_kg;
+  cal.linear_range_kg = 0.0;
+  for (const StepResult& s : cal.steps) {
+    if (s.step.added_mass_kg <= 0.0 || s.outlier) continue;
+    if (std::abs(s.linear_mass_error) > options.linear_tolerance) break;
+    cal.linear_range_kg = s.step.added_mass_kg;
+  }
+  if (!(cal.linear_range_kg > 0.0)) {
+    cal.warnings.push_back("no ballast step is reproduced by the linear model within " +
+                           fmt("%g %%", 100.0 * options.linear_tolerance));
+  }
+  if (!cal.progressive.detected && !cal.progressive.reason.empty()) {
+    cal.warnings.push_back("no bump stop: " + cal.progressive.reason);
+  }
+  result.calibration = std::move(cal);
+  return result;
+}
+
+}  // namespace vmass::calibrate

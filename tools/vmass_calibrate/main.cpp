@@ -1,0 +1,241 @@
+// vmass-calibrate: rear-right suspension stiffness (and bump stop) from a static ballast test,
+// with its uncertainty, the linear range, a config snippet and a plot (issue 5; paper eq. 1-3,
+// Fig. 9).
+//
+//   vmass-calibrate --ballast CSV [--config FILE] [--masses LIST] [--write-config FILE]
+//                   [--plot PNG] [--json] [geometry flags] [fit and plateau flags]
+//
+// --ballast takes a steps CSV (added_mass_<unit>, rear_right_deflection_<unit>; one row per
+// sample or step) or a time series (time_s, rear_right_deflection_<unit>[, speed_mps], e.g. a
+// vmass samples.csv) whose standstill plateaus are found and paired with --masses. A candump
+// log is recognised and refused with an explanation: the CAN signal mapping it needs is not
+// built yet. Exit codes: 0 ok, 1 fit not usable or plot failed, 2 usage or data error.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+
+#include "vmass/calibrate/ballast_csv.hpp"
+#include "vmass/calibrate/calibration_report.hpp"
+#include "vmass/calibrate/plateau_detector.hpp"
+#include "vmass/calibrate/suspension_fit.hpp"
+#include "vmass/config/config.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kExitFit = 1;
+constexpr int kExitUsage = 2;
+
+int fail(const std::string& message, int code = kExitUsage) {
+  std::cerr << "vmass-calibrate: error: " << message << "\n";
+  return code;
+}
+
+// The plotting script ships beside our executables (build/bin or the install's bin).
+std::string sibling_program(const std::string& name) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path candidate = self.parent_path() / name;
+    if (fs::exists(candidate)) return candidate.string();
+  }
+  return name;  // rely on PATH
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// True when the file's first meaningful line is a candump -l record "(seconds) iface id#data".
+bool looks_like_candump(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    return line[first] == '(' && line.find('#') != std::string::npos;
+  }
+  return false;
+}
+
+bool write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  return static_cast<bool>(out);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "vmass-calibrate: rear suspension stiffness from static ballast steps (paper eq. 1-3)"};
+  std::string ballast_path, config_path, masses_text, write_config_path, plot_path;
+  bool json = false;
+  std::optional<double> wheelbase_m, cg_to_front_axle_m, gravity_mps2, empty_mass_kg;
+  vmass::calibrate::SuspensionFitOptions fit;
+  vmass::calibrate::PlateauParams plateau;
+  double min_step_mm = plateau.min_step_m * 1e3;
+
+  app.add_option("--ballast", ballast_path,
+                 "steps CSV (added_mass_kg, rear_right_deflection_mm) or time series CSV "
+                 "(time_s, rear_right_deflection_<unit>[, speed_mps])")
+      ->required();
+  app.add_option("--config", config_path, "vmass YAML config: vehicle geometry and empty mass");
+  app.add_option("--masses", masses_text,
+                 "ballast added at each plateau of a time series, kg, in time order: "
+                 "'0,100,200' or FIRST:STEP:LAST");
+  app.add_option("--write-config", write_config_path, "write the suspension: YAML snippet here");
+  app.add_option("--plot", plot_path, "write a PNG: steps, both fits, linear range, residuals");
+  app.add_flag("--json", json, "print the results as one JSON object on stdout");
+  app.add_option("--wheelbase-m", wheelbase_m, "l (overrides the config)");
+  app.add_option("--cg-to-front-axle-m", cg_to_front_axle_m, "l_f (overrides the config)");
+  app.add_option("--gravity-mps2", gravity_mps2, "g (overrides the config; default 9.80665)");
+  app.add_option("--empty-mass-kg", empty_mass_kg,
+                 "M_idle, for the per-step total-mass table (overrides the config)");
+  app.add_option("--linear-tolerance", fit.linear_tolerance,
+                 "linear range: relative load error allowed (default 0.01)");
+  app.add_option("--robust-scale-mm", fit.robust_scale_mm,
+                 "Cauchy loss scale, mm (default 0: estimated from the residuals)");
+  app.add_option("--settle-s", plateau.settle_s, "plateaus: settling time always dropped");
+  app.add_option("--min-plateau-s", plateau.min_plateau_s, "plateaus: shortest plateau kept");
+  app.add_option("--min-step-mm", min_step_mm, "plateaus: closer levels are the same load");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+  plateau.min_step_m = min_step_mm * 1e-3;
+
+  // ---- Vehicle geometry (and empty mass) from the config and the flags.
+  vmass::VehicleParams vehicle;
+  bool have_empty_mass = false;
+  if (!config_path.empty()) {
+    const vmass::ConfigLoad loaded = vmass::load_config(config_path);
+    if (!loaded.ok()) return fail(loaded.error);
+    vehicle = loaded.config->pipeline.vehicle;
+    have_empty_mass = true;
+  }
+  if (wheelbase_m) vehicle.wheelbase_m = *wheelbase_m;
+  if (cg_to_front_axle_m) vehicle.cg_to_front_axle_m = *cg_to_front_axle_m;
+  if (gravity_mps2) vehicle.gravity_mps2 = *gravity_mps2;
+  if (empty_mass_kg) {
+    vehicle.empty_mass_kg = *empty_mass_kg;
+    have_empty_mass = true;
+  }
+  const auto geometry = vmass::calibrate::LoadGeometry::from_vehicle(vehicle);
+  if (std::string m = geometry.validate(); !m.empty()) {
+    return fail(m + (config_path.empty()
+                         ? " (give --config FILE, or --wheelbase-m and --cg-to-front-axle-m)"
+                         : ""));
+  }
+  if (have_empty_mass && !(vehicle.empty_mass_kg > 0.0)) {
+    return fail("vehicle.empty_mass_kg must be > 0");
+  }
+
+  // ---- Ballast steps: a steps CSV, or plateaus of a time series.
+  if (looks_like_candump(ballast_path)) {
+    return fail(ballast_path +
+                ": this is a candump -l log. Reading the static test from CAN needs the config's "
+                "signal mapping (can.inputs -> rear_right_deflection), which the CAN layer does "
+                "not provide yet; decode the deflection to a CSV (time_s, "
+                "rear_right_deflection_m) and pass it with --masses");
+  }
+  const vmass::calibrate::BallastCsvRead read = vmass::calibrate::read_ballast_csv(ballast_path);
+  if (!read.ok()) return fail(read.error);
+  std::vector<vmass::calibrate::BallastStep> steps;
+  std::vector<std::string> notes;
+  if (read.csv->kind == vmass::calibrate::BallastCsvKind::kSteps) {
+    if (!masses_text.empty()) {
+      return fail("--masses is for a time series; " + ballast_path +
+                  " already has an added_mass column");
+    }
+    steps = vmass::calibrate::group_samples(read.csv->samples);
+  } else {
+    if (masses_text.empty()) {
+      return fail(ballast_path +
+                  " is a time series: give the ballast of each plateau with --masses");
+    }
+    std::vector<double> masses;
+    if (std::string m = vmass::calibrate::parse_mass_list(masses_text, &masses); !m.empty()) {
+      return fail(m);
+    }
+    const vmass::calibrate::PlateauDetection detection =
+        vmass::calibrate::detect_plateaus(read.csv->series, plateau);
+    if (!detection.ok()) return fail(ballast_path + ": " + detection.error);
+    notes = detection.notes;
+    if (std::string m = vmass::calibrate::steps_from_plateaus(detection.plateaus, masses, &steps);
+        !m.empty()) {
+      return fail(ballast_path + ": " + m);
+    }
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%zu plateaus found (noise %.4f mm); %ld rows skipped",
+                  detection.plateaus.size(), detection.noise_std_m * 1e3, read.csv->skipped_rows);
+    notes.insert(notes.begin(), buf);
+  }
+  if (std::string m = vmass::calibrate::check_steps(steps); !m.empty()) {
+    return fail(ballast_path + ": " + m);
+  }
+
+  // ---- Fit.
+  const vmass::calibrate::SuspensionFitResult result =
+      vmass::calibrate::fit_suspension(steps, geometry, fit);
+  if (!result.ok()) return fail(result.error, kExitFit);
+  const vmass::calibrate::SuspensionCalibration& cal = *result.calibration;
+  const std::vector<vmass::calibrate::MassCheckRow> rows =
+      have_empty_mass ? vmass::calibrate::mass_check(cal, vehicle)
+                      : std::vector<vmass::calibrate::MassCheckRow>{};
+
+  const std::string snippet = vmass::calibrate::suspension_yaml(
+      cal, {"rear-right suspension, written by vmass-calibrate from " +
+                fs::path(ballast_path).filename().string(),
+            "(replace the suspension: section of the vmassd config with this one)"});
+  if (!write_config_path.empty() && !write_file(write_config_path, snippet)) {
+    return fail(write_config_path + ": cannot write");
+  }
+
+  const std::string json_text = vmass::calibrate::calibration_json(cal, rows);
+  if (json) {
+    std::cout << json_text << "\n";
+  } else {
+    for (const std::string& n : notes) std::cout << "note: " << n << "\n";
+    std::cout << vmass::calibrate::calibration_text(cal, rows) << "\n";
+    if (write_config_path.empty()) {
+      std::cout << snippet;
+    } else {
+      std::cout << "config snippet     " << write_config_path << "\n";
+    }
+  }
+
+  if (!plot_path.empty()) {
+    const std::string json_path =
+        (fs::temp_directory_path() / ("vmass-calibrate-" + std::to_string(::getpid()) + ".json"))
+            .string();
+    if (!write_file(json_path, json_text)) return fail(json_path + ": cannot write");
+    const std::string command =
+        shell_quote(sibling_program("vmass-calibrate-plot")) + " --result " +
+        shell_quote(json_path) + " --out " + shell_quote(plot_path) + " --title " +
+        shell_quote("vmass-calibrate: " + fs::path(ballast_path).filename().string());
+    const int rc = std::system(command.c_str());
+    fs::remove(json_path);
+    if (rc != 0) return fail("plotting failed (" + command + ")", kExitFit);
+    if (!json) std::cout << "plot               " << plot_path << "\n";
+  }
+  return 0;
+}
