@@ -237,6 +237,8 @@ CandumpReader::CandumpReader(std::istream& in, std::string source)
     : in_(in), source_(std::move(source)) {}
 
 bool CandumpReader::next(CandumpRecord* record) {
+  CandumpRecord scratch;
+  if (record == nullptr) record = &scratch;
   while (std::getline(in_, line_)) {
     ++line_no_;
     ++stats_.lines;

@@ -72,7 +72,7 @@ struct Message {
   int length = 0;  ///< payload bytes (DLC), 0..64
   std::string transmitter;
   std::string comment;
-  bool fd = false;        ///< VFrameFormat says CAN FD
+  bool fd = false;        ///< CAN FD: VFrameFormat says so, or longer than 8 bytes
   int cycle_time_ms = 0;  ///< GenMsgCycleTime, 0 if not given
   std::vector<Signal> signals;
   int line = 0;  ///< line of the BO_ statement
