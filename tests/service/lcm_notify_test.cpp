@@ -1,0 +1,356 @@
+// LCM publish/subscribe round trip on memq:// (every field as sent, every double finite) and the
+// sd_notify protocol through a NOTIFY_SOCKET datagram socket bound by the test (no systemd).
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+
+#include "vmass/service/lcm_publisher.hpp"
+#include "vmass/service/systemd_notifier.hpp"
+
+namespace vmass::service {
+namespace {
+
+TickRecord make_record(std::int64_t tick) {
+  TickRecord r;
+  r.tick = tick;
+  Estimate& e = r.estimate;
+  e.time_us = 1'700'000'000'000'000 + tick * 10'000;
+  e.mass_known = true;
+  e.mass_kg = 1712.25 + static_cast<double>(tick);
+  e.mu_n = -12.5;
+  e.mass_std_kg = 14.0;
+  e.ci_low_kg = e.mass_kg - 27.5;
+  e.ci_high_kg = e.mass_kg + 27.5;
+  e.initial_mass_kg = 1650.0;
+  e.pairs_used = 321;
+  e.status = EstimateStatus::kConverging;
+  e.reason = StatusReason::kRefining;
+  e.invalid_inputs = input_bit(Input::kGear);
+  e.blocks[0].ticks = 1000;
+  e.blocks[0].accepted = 250;
+  e.blocks[0].rejected_innovation = 7;
+  e.blocks[1].ticks = 1000;
+  e.blocks[1].accepted = 71;
+  r.events[0].verdict = PairVerdict::kAccepted;
+  r.events[0].has_candidate = true;
+  r.events[0].pair.y_n = 850.0;
+  r.events[0].pair.delta_accel_mps2 = 0.5;
+  r.events[0].pair.time_us = e.time_us;
+  r.events[0].predicted_y_n = 845.0;
+  r.events[0].innovation_variance_n2 = 1.0e4;
+  r.events[0].test_ratio = 0.05;
+  r.events[1].verdict = PairVerdict::kSteering;
+  r.events[1].predicted_y_n = std::numeric_limits<double>::quiet_NaN();  // never on the wire
+  r.inputs_valid = kAllInputs & ~input_bit(Input::kGear);
+  for (int i = 0; i < kInputCount; ++i) r.input_age_s[i] = 0.01 * i;
+  r.input_age_s[static_cast<int>(Input::kGear)] = -1.0;
+  return r;
+}
+
+struct Received {
+  std::vector<vmass::mass_estimate_t> estimates;
+  std::vector<vmass::status_t> statuses;
+  std::vector<vmass::pair_t> pairs;
+  void on_estimate(const lcm::ReceiveBuffer*, const std::string&, const vmass::mass_estimate_t* m) {
+    estimates.push_back(*m);
+  }
+  void on_status(const lcm::ReceiveBuffer*, const std::string&, const vmass::status_t* m) {
+    statuses.push_back(*m);
+  }
+  void on_pair(const lcm::ReceiveBuffer*, const std::string&, const vmass::pair_t* m) {
+    pairs.push_back(*m);
+  }
+};
+
+void drain(lcm::LCM& lcm) {
+  while (lcm.handleTimeout(0) > 0) {
+  }
+}
+
+TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
+  lcm::LCM lcm("memq://");
+  ASSERT_TRUE(lcm.good());
+  LcmSettings settings;
+  settings.publish_pairs = true;
+  Received rx;
+  lcm.subscribe(settings.estimate_channel, &Received::on_estimate, &rx);
+  lcm.subscribe(settings.status_channel, &Received::on_status, &rx);
+  lcm.subscribe(settings.pairs_channel, &Received::on_pair, &rx);
+
+  LcmPublisher publisher(lcm, settings, "bayes");
+  const TickRecord record = make_record(3);
+  ASSERT_TRUE(publisher.on_tick(record));
+  DaemonStatus status;
+  status.state = DaemonState::kRunning;
+  status.source = "samples:drive.csv";
+  status.uptime_s = 12.5;
+  status.tick_rate_hz = 100.0;
+  status.last = record;
+  status.has_tick = true;
+  status.frames_received = 1201;
+  status.frames_decoded = 1200;
+  status.frames_malformed = 1;
+  status.timing.ticks = 1250;
+  status.timing.overruns = 2;
+  status.timing.jitter_p50_us = 15.0;
+  status.timing.jitter_p99_us = 240.0;
+  status.timing.jitter_max_us = 900.0;
+  status.state_restored = true;
+  ASSERT_TRUE(publisher.publish_status(status));
+  drain(lcm);
+
+  ASSERT_EQ(rx.estimates.size(), 1u);
+  const vmass::mass_estimate_t& e = rx.estimates[0];
+  EXPECT_EQ(e.utime, record.estimate.time_us);
+  EXPECT_EQ(e.tick, 3);
+  EXPECT_TRUE(e.mass_known);
+  EXPECT_EQ(e.mass_kg, record.estimate.mass_kg);
+  EXPECT_EQ(e.mass_ci_low_kg, record.estimate.ci_low_kg);
+  EXPECT_EQ(e.mass_ci_high_kg, record.estimate.ci_high_kg);
+  EXPECT_EQ(e.mass_std_kg, 14.0);
+  EXPECT_EQ(e.mu_n, -12.5);
+  EXPECT_EQ(e.initial_mass_kg, 1650.0);
+  EXPECT_EQ(e.estimator, "bayes");
+  EXPECT_EQ(e.status, static_cast<int>(EstimateStatus::kConverging));
+  EXPECT_EQ(e.status_name, "converging");
+  EXPECT_EQ(e.reason_name, "refining");
+  EXPECT_EQ(e.invalid_inputs, static_cast<std::int32_t>(input_bit(Input::kGear)));
+  EXPECT_EQ(e.pairs_used, 321);
+  EXPECT_EQ(e.longitudinal_accepted, 250);
+  EXPECT_EQ(e.longitudinal_rejected, 7);
+  EXPECT_EQ(e.lateral_accepted, 71);
+  EXPECT_DOUBLE_EQ(e.longitudinal_availability, 0.25);
+  EXPECT_DOUBLE_EQ(e.lateral_availability, 0.071);
+  for (double v : {e.mass_kg, e.mass_std_kg, e.mass_ci_low_kg, e.mass_ci_high_kg, e.mu_n,
+                   e.initial_mass_kg, e.longitudinal_availability, e.lateral_availability}) {
+    EXPECT_TRUE(std::isfinite(v));
+  }
+
+  ASSERT_EQ(rx.pairs.size(), 2u);
+  EXPECT_EQ(rx.pairs[0].block_name, "longitudinal");
+  EXPECT_TRUE(rx.pairs[0].accepted);
+  EXPECT_EQ(rx.pairs[0].y_n, 850.0);
+  EXPECT_EQ(rx.pairs[0].delta_accel_mps2, 0.5);
+  EXPECT_EQ(rx.pairs[0].test_ratio, 0.05);
+  EXPECT_EQ(rx.pairs[1].block_name, "lateral");
+  EXPECT_FALSE(rx.pairs[1].accepted);
+  EXPECT_EQ(rx.pairs[1].verdict_name, std::string(verdict_name(PairVerdict::kSteering)));
+  EXPECT_EQ(rx.pairs[1].predicted_y_n, 0.0);  // NaN replaced
+  for (const vmass::pair_t& p : rx.pairs) {
+    for (double v : {p.y_n, p.delta_accel_mps2, p.weight, p.predicted_y_n,
+                     p.innovation_variance_n2, p.test_ratio}) {
+      EXPECT_TRUE(std::isfinite(v));
+    }
+  }
+
+  ASSERT_EQ(rx.statuses.size(), 1u);
+  const vmass::status_t& s = rx.statuses[0];
+  EXPECT_EQ(s.state_name, "running");
+  EXPECT_EQ(s.source, "samples:drive.csv");
+  EXPECT_EQ(s.uptime_s, 12.5);
+  EXPECT_EQ(s.mass_kg, record.estimate.mass_kg);
+  ASSERT_EQ(s.num_inputs, kInputCount);
+  EXPECT_EQ(s.input_name[5], "speed");
+  EXPECT_DOUBLE_EQ(s.input_age_s[5], 0.05);
+  EXPECT_TRUE(s.input_valid[5]);
+  EXPECT_FALSE(s.input_valid[static_cast<int>(Input::kGear)]);
+  EXPECT_EQ(s.input_age_s[static_cast<int>(Input::kGear)], -1.0);
+  EXPECT_EQ(s.frames_received, 1201);
+  EXPECT_EQ(s.frames_malformed, 1);
+  EXPECT_EQ(s.ticks, 1250);
+  EXPECT_EQ(s.tick_overruns, 2);
+  EXPECT_EQ(s.jitter_p99_us, 240.0);
+  EXPECT_TRUE(s.state_restored);
+  for (double v : {s.uptime_s, s.mass_kg, s.tick_rate_hz, s.jitter_p50_us, s.jitter_p99_us,
+                   s.jitter_max_us, s.wake_latency_max_us, s.tick_compute_max_us}) {
+    EXPECT_TRUE(std::isfinite(v));
+  }
+}
+
+TEST(LcmRoundTrip, DecimationAndPairsOffByDefault) {
+  lcm::LCM lcm("memq://");
+  LcmSettings settings;
+  settings.estimate_decimation = 4;
+  Received rx;
+  lcm.subscribe(settings.estimate_channel, &Received::on_estimate, &rx);
+  lcm.subscribe(settings.pairs_channel, &Received::on_pair, &rx);
+  LcmPublisher publisher(lcm, settings, "rls");
+  for (int k = 0; k < 10; ++k) {
+    ASSERT_TRUE(publisher.on_tick(make_record(k)));
+    drain(lcm);
+  }
+  ASSERT_EQ(rx.estimates.size(), 3u);  // ticks 0, 4, 8
+  EXPECT_EQ(rx.estimates[1].tick, 4);
+  EXPECT_EQ(rx.estimates[2].tick, 8);
+  EXPECT_TRUE(rx.pairs.empty());
+  EXPECT_EQ(publisher.estimates_published(), 3);
+}
+
+// ------------------------------------------------------------------------------ sd_notify
+
+class NotifySocket {
+ public:
+  NotifySocket() {
+    path_ = "/tmp/vmass_notify_" + std::to_string(::getpid()) + "_" +
+            std::to_string(counter_++) + ".sock";
+    fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path_.c_str());
+    ::unlink(path_.c_str());
+    ok_ = fd_ >= 0 && ::bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
+    timeval tv{5, 0};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  }
+  ~NotifySocket() {
+    if (fd_ >= 0) ::close(fd_);
+    ::unlink(path_.c_str());
+  }
+  bool ok() const { return ok_; }
+  const std::string& path() const { return path_; }
+  /// Next datagram ("" after the 5 s receive timeout).
+  std::string next() {
+    char buf[4096];
+    const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
+    return n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : std::string();
+  }
+  /// Datagrams until one contains `what` (or the timeout); all of them, in order.
+  std::vector<std::string> until(const std::string& what) {
+    std::vector<std::string> got;
+    for (;;) {
+      std::string m = next();
+      if (m.empty()) return got;
+      got.push_back(m);
+      if (m.find(what) != std::string::npos) return got;
+    }
+  }
+  int fd() const { return fd_; }
+
+ private:
+  static inline int counter_ = 0;
+  std::string path_;
+  int fd_ = -1;
+  bool ok_ = false;
+};
+
+TEST(SystemdNotifier, SpeaksTheNotifyProtocol) {
+  NotifySocket sock;
+  ASSERT_TRUE(sock.ok());
+  ::setenv("NOTIFY_SOCKET", sock.path().c_str(), 1);
+  ::setenv("WATCHDOG_USEC", "2000000", 1);
+  ::setenv("WATCHDOG_PID", std::to_string(::getpid()).c_str(), 1);
+  SystemdNotifier n;  // sd_notify() reads $NOTIFY_SOCKET at each call: kept until the end
+  ASSERT_TRUE(n.enabled());
+  EXPECT_EQ(n.watchdog_usec(), 2'000'000u);
+  EXPECT_EQ(n.watchdog_ping_interval_usec(), 1'000'000u);
+
+  EXPECT_TRUE(n.ready());
+  EXPECT_EQ(sock.next(), "READY=1");
+  EXPECT_TRUE(n.status("running: 1712 kg\nconverging"));
+  EXPECT_EQ(sock.next(), "STATUS=running: 1712 kg converging");
+  EXPECT_FALSE(n.status("running: 1712 kg\nconverging"));  // unchanged: not resent
+  EXPECT_TRUE(n.status("running: 1713 kg"));
+  EXPECT_EQ(sock.next(), "STATUS=running: 1713 kg");
+
+  EXPECT_TRUE(n.watchdog_due(5'000'000));  // never sent yet
+  EXPECT_TRUE(n.watchdog());
+  n.watchdog_sent(5'000'000);
+  EXPECT_EQ(sock.next(), "WATCHDOG=1");
+  EXPECT_FALSE(n.watchdog_due(5'999'999));
+  EXPECT_TRUE(n.watchdog_due(6'000'000));
+  EXPECT_TRUE(n.stopping());
+  EXPECT_EQ(sock.next(), "STOPPING=1");
+  EXPECT_EQ(n.notifications_sent(), 5u);
+  ::unsetenv("NOTIFY_SOCKET");
+  ::unsetenv("WATCHDOG_USEC");
+  ::unsetenv("WATCHDOG_PID");
+}
+
+TEST(SystemdNotifier, NoSocketNoNotifications) {
+  ::unsetenv("NOTIFY_SOCKET");
+  SystemdNotifier n;
+  EXPECT_FALSE(n.enabled());
+  EXPECT_FALSE(n.ready());
+  EXPECT_FALSE(n.watchdog_due(1'000'000'000));
+}
+
+#ifdef VMASSD_BIN
+// The daemon itself under a fake systemd: READY=1 after start-up, STATUS= lines, WATCHDOG=1 while
+// the estimator ticks, STOPPING=1 on SIGTERM, exit 0.
+TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
+  NotifySocket sock;
+  ASSERT_TRUE(sock.ok());
+  const std::string dir = "/tmp/vmass_notify_daemon_" + std::to_string(::getpid());
+  ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+  // 30 s of samples at real speed: it keeps running until the SIGTERM below.
+  std::string csv = dir + "/samples.csv";
+  {
+    FILE* f = std::fopen(csv.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "time_s,wheel_torque_nm,brake_pressure_pa,accel_x_mps2,accel_y_mps2,"
+                    "yaw_rate_radps,speed_mps,steering_wheel_angle_rad,"
+                    "rear_right_deflection_m,gear\n");
+    for (int i = 0; i <= 3000; ++i) {
+      std::fprintf(f, "%.2f,0,0,0,0,0,0,0,0.01,1\n", i * 0.01);
+    }
+    std::fclose(f);
+  }
+  const std::string config = dir + "/vmassd.yaml";
+  {
+    FILE* f = std::fopen(config.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "vehicle:\n  empty_mass_kg: 1500\n  wheelbase_m: 2.7\n"
+                    "  cg_to_front_axle_m: 1.2\n  wheel_radius_m: 0.31\n"
+                    "  brake_gain_n_per_pa: 0.0033\n  steering_ratio: 15.5\n"
+                    "  cornering_stiffness_front_n_per_rad: 150000\n"
+                    "  cornering_stiffness_rear_n_per_rad: 170000\n"
+                    "suspension:\n  stiffness_n_per_m: 30000\n");
+    std::fclose(f);
+  }
+  // WATCHDOG_PID unset: sd_watchdog_enabled() accepts the watchdog for any process.
+  const std::string command = "NOTIFY_SOCKET=" + sock.path() +
+                              " WATCHDOG_USEC=400000 " VMASSD_BIN " --config " + config +
+                              " --samples " + csv + " --lcm-url memq:// --no-restore"
+                              " > " + dir + "/log.txt 2>&1 & echo $! > " + dir + "/pid";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+
+  const std::vector<std::string> start = sock.until("READY=1");
+  ASSERT_FALSE(start.empty());
+  EXPECT_NE(start.back().find("READY=1"), std::string::npos);
+  EXPECT_NE(start.back().find("STATUS="), std::string::npos);  // READY=1 carries a STATUS=
+  // Pings at half of 400 ms while ticking; and STATUS= lines once a second.
+  int watchdogs = 0, statuses = 0;
+  for (int i = 0; i < 40 && (watchdogs < 3 || statuses < 1); ++i) {
+    const std::string m = sock.next();
+    ASSERT_FALSE(m.empty()) << "daemon stopped notifying";
+    watchdogs += m == "WATCHDOG=1";
+    statuses += m.rfind("STATUS=", 0) == 0;
+  }
+  EXPECT_GE(watchdogs, 3);
+  EXPECT_GE(statuses, 1);
+
+  ASSERT_EQ(std::system(("kill -TERM $(cat " + dir + "/pid)").c_str()), 0);
+  const std::vector<std::string> stop = sock.until("STOPPING=1");
+  ASSERT_FALSE(stop.empty());
+  EXPECT_NE(stop.back().find("STOPPING=1"), std::string::npos);
+  // Exit status 0 (wait for the process to go, then read it from the log's last line).
+  ASSERT_EQ(std::system(("for i in $(seq 50); do kill -0 $(cat " + dir +
+                         "/pid) 2>/dev/null || exit 0; sleep 0.1; done; exit 1").c_str()),
+            0)
+      << "vmassd did not stop within 5 s of SIGTERM";
+  EXPECT_EQ(std::system(("grep -q 'stopped:' " + dir + "/log.txt").c_str()), 0);
+  std::system(("rm -rf " + dir).c_str());
+}
+#endif
+
+}  // namespace
+}  // namespace vmass::service
