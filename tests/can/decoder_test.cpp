@@ -12,8 +12,13 @@
 
 #include "vmass/can/decoder.hpp"
 
-// Counts heap allocations so that tests can prove decode() makes none.
+// Counts heap allocations so that tests can prove decode() makes none. AddressSanitizer brings
+// its own operator new, so under it the count is not taken (and those checks are skipped).
 static std::atomic<long> g_allocations{0};
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kCountingAllocations = false;
+#else
+constexpr bool kCountingAllocations = true;
 void* operator new(std::size_t n) {
   ++g_allocations;
   if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
@@ -21,6 +26,7 @@ void* operator new(std::size_t n) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#endif
 
 namespace vmass::can {
 namespace {
@@ -381,6 +387,7 @@ TEST(Decoder, SelectionDecodesNamedSignalsIntoSlots) {
 }
 
 TEST(Decoder, DecodingAllocatesNothing) {
+  if (!kCountingAllocations) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
   DbcParseResult r = load_dbc_file(kDataDir + "/dbc/FORD_CADS_64.dbc");
   const auto d = Decoder::compile(r.database);
   ASSERT_TRUE(d.has_value());
