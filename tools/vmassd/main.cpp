@@ -8,6 +8,7 @@
 // (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
 // (--replay, --samples) stops the daemon at its end.
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "daemon.hpp"
@@ -32,6 +33,8 @@ int main(int argc, char** argv) {
   replay->excludes(samples);
   CLI11_PARSE(app, argc, argv);
 
+  // Diagnostics go to stderr (the journal under systemd); stdout stays free.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("vmassd"));
   spdlog::set_pattern("vmassd %^%l%$: %v");
   return vmassd::run(o);
 }

@@ -1,0 +1,333 @@
+// vmassd as a process: offline identity with replay, SIGKILL and resume, LCM across processes
+// in a private network namespace.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <vmass/mass_estimate_t.hpp>
+#include <vmass/status_t.hpp>
+
+#include "test_drive.hpp"
+#include "vmass/config/config.hpp"
+#include "vmass/replay/estimate_csv.hpp"
+#include "vmass/replay/samples_csv.hpp"
+#include "vmass/replay/tick_resampler.hpp"
+#include "vmass/service/state_store.hpp"
+
+#ifdef VMASSD_BIN
+
+namespace vmass {
+namespace {
+
+namespace fs = std::filesystem;
+
+class DaemonTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vmassd_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    csv_ = path("samples.csv");
+    ASSERT_TRUE(test::write_samples_csv(csv_, test::make_drive(test::DriveSpec{})));
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write_config(const std::string& extra, const std::string& type = "bayes") {
+    const std::string p = path("vmassd.yaml");
+    EXPECT_TRUE(test::write_text(p, test::test_config_yaml(extra, type)));
+    return p;
+  }
+  static int run(const std::string& command) {
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  /// Starts a command in the background; its pid and (later) exit code go to files.
+  void start(const std::string& command, const std::string& name) {
+    ASSERT_EQ(run("( " + command + " > " + path(name + ".log") + " 2>&1 & echo $! > " +
+                  path(name + ".pid") + "; wait $!; echo $? > " + path(name + ".rc") + " ) &"),
+              0);
+    for (int i = 0; i < 100 && !fs::exists(path(name + ".pid")); ++i) sleep_s(0.02);
+  }
+  /// Exit code of a started command, or -1 when it did not finish within timeout_s.
+  int wait_rc(const std::string& name, double timeout_s) {
+    for (double t = 0.0; t < timeout_s; t += 0.05) {
+      std::ifstream in(path(name + ".rc"));
+      int rc = -1;
+      if (in >> rc) return rc;
+      sleep_s(0.05);
+    }
+    return -1;
+  }
+  std::string read(const std::string& name) const {
+    std::ifstream in(path(name));
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  static void sleep_s(double s) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(s));
+  }
+
+  fs::path dir_;
+  std::string csv_;
+};
+
+struct LoggedRun {
+  std::vector<vmass::mass_estimate_t> estimates;
+  std::vector<vmass::status_t> statuses;
+};
+
+LoggedRun read_lcm_log(const std::string& file) {
+  LoggedRun out;
+  lcm::LogFile log(file, "r");
+  if (!log.good()) return out;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    if (ev->channel == "VMASS_ESTIMATE") {
+      vmass::mass_estimate_t m;
+      if (m.decode(ev->data, 0, ev->datalen) == ev->datalen) out.estimates.push_back(m);
+    } else if (ev->channel == "VMASS_STATUS") {
+      vmass::status_t m;
+      if (m.decode(ev->data, 0, ev->datalen) == ev->datalen) out.statuses.push_back(m);
+    }
+  }
+  return out;
+}
+
+/// The Estimate a mass_estimate_t carries (for EstimateCsvWriter::row).
+Estimate from_lcm(const vmass::mass_estimate_t& m) {
+  Estimate e;
+  e.time_us = m.utime;
+  e.mass_known = m.mass_known;
+  e.mass_kg = m.mass_kg;
+  e.mass_std_kg = m.mass_std_kg;
+  e.ci_low_kg = m.mass_ci_low_kg;
+  e.ci_high_kg = m.mass_ci_high_kg;
+  e.mu_n = m.mu_n;
+  e.initial_mass_kg = m.initial_mass_kg;
+  e.pairs_used = static_cast<long>(m.pairs_used);
+  e.status = static_cast<EstimateStatus>(m.status);
+  e.reason = static_cast<StatusReason>(m.reason);
+  e.invalid_inputs = static_cast<InputMask>(m.invalid_inputs);
+  e.blocks[0].ticks = static_cast<long>(m.longitudinal_ticks);
+  e.blocks[0].accepted = static_cast<long>(m.longitudinal_accepted);
+  e.blocks[0].rejected_innovation = static_cast<long>(m.longitudinal_rejected);
+  e.blocks[1].ticks = static_cast<long>(m.lateral_ticks);
+  e.blocks[1].accepted = static_cast<long>(m.lateral_accepted);
+  e.blocks[1].rejected_innovation = static_cast<long>(m.lateral_rejected);
+  return e;
+}
+
+// `vmassd --samples CSV --speed max` ticks in log time and must give exactly what offline replay
+// gives: checked bit for bit against the replay loop (TickResampler + Pipeline, as vmass-replay
+// runs it) and, row for row, against the vmass-replay binary's CSV.
+TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
+  for (const std::string type : {"bayes", "rls"}) {
+    SCOPED_TRACE(type);
+    const std::string config = write_config("", type);
+    const std::string log = path("out_" + type + ".lcm");
+    ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                  " --speed max --no-restore --lcm-url 'file://" + log + "?mode=w' 2> " +
+                  path("vmassd.log")),
+              0)
+        << read("vmassd.log");
+    const LoggedRun daemon = read_lcm_log(log);
+
+    // The offline loop.
+    ConfigLoad c = load_config(config);
+    ASSERT_TRUE(c.ok()) << c.error;
+    const PipelineParams& params = c.config->pipeline;
+    Pipeline pipeline(params);
+    TickResampler ticks(params.estimator.differencing.tick_rate_hz,
+                        5.0 / params.estimator.differencing.tick_rate_hz);
+    std::vector<Estimate> offline;
+    SamplesCsvReader reader(csv_);
+    ASSERT_TRUE(reader.error().empty()) << reader.error();
+    while (auto s = reader.next()) {
+      ticks.push(*s, [&](const Sample& tick) {
+        pipeline.step(tick);
+        offline.push_back(pipeline.estimate());
+      });
+    }
+    ASSERT_EQ(daemon.estimates.size(), offline.size());
+    ASSERT_GT(offline.back().pairs_used, 50);
+    for (std::size_t i = 0; i < offline.size(); ++i) {
+      const vmass::mass_estimate_t& d = daemon.estimates[i];
+      const Estimate& o = offline[i];
+      ASSERT_EQ(d.utime, o.time_us) << i;
+      ASSERT_EQ(d.tick, static_cast<std::int64_t>(i));
+      ASSERT_EQ(d.mass_kg, o.mass_kg) << i;  // bitwise: same doubles
+      ASSERT_EQ(d.mass_ci_low_kg, o.ci_low_kg) << i;
+      ASSERT_EQ(d.mass_ci_high_kg, o.ci_high_kg) << i;
+      ASSERT_EQ(d.mass_std_kg, o.mass_std_kg) << i;
+      ASSERT_EQ(d.mu_n, o.mu_n) << i;
+      ASSERT_EQ(d.pairs_used, o.pairs_used) << i;
+      ASSERT_EQ(d.status, static_cast<int>(o.status)) << i;
+      ASSERT_EQ(d.reason, static_cast<int>(o.reason)) << i;
+      ASSERT_EQ(d.invalid_inputs, static_cast<std::int32_t>(o.invalid_inputs)) << i;
+      ASSERT_EQ(d.longitudinal_accepted, o.blocks[0].accepted) << i;
+      ASSERT_EQ(d.lateral_accepted, o.blocks[1].accepted) << i;
+    }
+    // The final status closes the run (state stopping) and counts every row.
+    ASSERT_FALSE(daemon.statuses.empty());
+    const vmass::status_t& last = daemon.statuses.back();
+    EXPECT_EQ(last.state_name, "stopping");
+    EXPECT_EQ(last.ticks, static_cast<std::int64_t>(offline.size()));
+    EXPECT_EQ(last.frames_decoded, static_cast<std::int64_t>(test::make_drive({}).size()));
+    EXPECT_EQ(last.publish_queue_drops, 0);
+
+#ifdef VMASS_REPLAY_BIN
+    const std::string replay_csv = path("replay_" + type + ".csv");
+    ASSERT_EQ(run(std::string(VMASS_REPLAY_BIN) + " --config " + config + " --samples " + csv_ +
+                  " --out " + replay_csv + " > /dev/null"),
+              0);
+    std::ifstream in(replay_csv);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, EstimateCsvWriter::header());
+    std::size_t row = 0;
+    while (std::getline(in, line)) {
+      ASSERT_LT(row, daemon.estimates.size());
+      ASSERT_EQ(line, EstimateCsvWriter::row(from_lcm(daemon.estimates[row]))) << "row " << row;
+      ++row;
+    }
+    EXPECT_EQ(row, daemon.estimates.size());
+#endif
+  }
+}
+
+// SIGKILL in the middle of a drive, then a restart: the state saved before the kill is intact
+// (atomic writes) and the new run starts from it instead of from the static prior.
+TEST_F(DaemonTest, SigkillMidDriveThenRestartResumesFromSavedState) {
+  // input_timeout_s 0.5 s of log time = 50 ms of wall time at 10x: room for a loaded machine.
+  const std::string config =
+      write_config("daemon:\n  persist_interval_s: 0.2\n  input_timeout_s: 0.5\n");
+  const std::string state = path("vmassd.state");
+  // 60 s drive at 10x: killed after ~3.5 s wall (~35 s of log time, in the middle of the events).
+  start(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+            " --speed 10 --lcm-url memq:// --state-file " + state,
+        "first");
+  sleep_s(3.5);
+  ASSERT_EQ(run("kill -KILL $(cat " + path("first.pid") + ")"), 0);
+  EXPECT_EQ(wait_rc("first", 5.0), 137) << read("first.log");  // 128 + SIGKILL
+
+  ConfigLoad c = load_config(config);
+  ASSERT_TRUE(c.ok());
+  const service::StateLoad saved =
+      service::load_state_file(state, service::state_fingerprint(c.config->pipeline));
+  ASSERT_EQ(saved.status, service::StateLoadStatus::kLoaded) << saved.error;
+  EXPECT_FALSE(fs::exists(state + ".tmp") && fs::file_size(state + ".tmp") == 0);
+  const long saved_pairs = saved.state.snapshot.pairs_used;
+  ASSERT_GT(saved_pairs, 0) << "killed before any event was used; log:\n" << read("first.log");
+  EXPECT_LT(saved.state.saved_time_us, 60'000'000);  // mid-drive
+
+  // Restart on the same drive (same load): the first estimate continues the saved belief.
+  const std::string log = path("second.lcm");
+  ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                " --speed max --lcm-url 'file://" + log + "?mode=w' --state-file " + state +
+                " 2> " + path("second.log")),
+            0)
+      << read("second.log");
+  const LoggedRun second = read_lcm_log(log);
+  ASSERT_FALSE(second.estimates.empty());
+  const vmass::mass_estimate_t& first_estimate = second.estimates.front();
+  EXPECT_TRUE(first_estimate.mass_known);
+  EXPECT_EQ(first_estimate.pairs_used, saved_pairs);
+  EXPECT_EQ(first_estimate.initial_mass_kg, saved.state.snapshot.prior.mass_kg);
+  // Same load: the first standstill window (3 s) confirms it; the pairs are kept throughout.
+  EXPECT_GE(second.estimates[400].pairs_used, saved_pairs);
+  ASSERT_FALSE(second.statuses.empty());
+  EXPECT_TRUE(second.statuses.back().state_restored);
+  EXPECT_NE(read("second.log").find("restored"), std::string::npos);
+
+  // Without the saved state the same drive starts from nothing.
+  const std::string fresh = path("fresh.lcm");
+  ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                " --speed max --no-restore --lcm-url 'file://" + fresh + "?mode=w' 2> /dev/null"),
+            0);
+  const LoggedRun fresh_run = read_lcm_log(fresh);
+  ASSERT_FALSE(fresh_run.estimates.empty());
+  EXPECT_EQ(fresh_run.estimates.front().pairs_used, 0);
+  EXPECT_FALSE(fresh_run.estimates.front().mass_known);
+}
+
+// A bad config is refused with file:line:key and exit code 2; an unknown CLI combination too.
+TEST_F(DaemonTest, RefusesToStartOnConfigErrors) {
+  const std::string config = write_config("lcm:\n  estimate_chanel: X\n");
+  EXPECT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                " --lcm-url memq:// 2> " + path("err.txt")),
+            2);
+  EXPECT_NE(read("err.txt").find("vmassd.yaml:19: lcm.estimate_chanel: unknown key"),
+            std::string::npos)
+      << read("err.txt");
+  const std::string good = write_config("");
+  EXPECT_EQ(run(std::string(VMASSD_BIN) + " --config " + good + " --samples " + csv_ +
+                " --speed fast --lcm-url memq:// 2> /dev/null"),
+            2);
+  EXPECT_NE(run(std::string(VMASSD_BIN) + " --config " + good + " --samples " + csv_ +
+                " --can can0 2> /dev/null"),
+            0);
+}
+
+#ifdef VMASS_MONITOR_BIN
+// Two processes, UDP multicast, inside a private network namespace (nothing leaves the machine):
+// vmassd replays at real speed, vmass-monitor measures what arrives.
+TEST_F(DaemonTest, CrossProcessMulticastMeetsTheRateInAPrivateNetns) {
+  if (run("unshare -n true 2> /dev/null") != 0) {
+    GTEST_SKIP() << "unshare -n not permitted here (needs root or user namespaces)";
+  }
+  const std::string config = write_config("lcm:\n  url: \"udpm://239.255.76.67:7667?ttl=0\"\n");
+  const std::string script = path("netns.sh");
+  ASSERT_TRUE(test::write_text(
+      script,
+      "set -e\n"
+      "ip link set lo up\n"
+      "ip route add 224.0.0.0/4 dev lo\n" +
+          std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+          " --no-restore > " + path("daemon.log") + " 2>&1 &\n"
+          "daemon=$!\n"
+          "sleep 1\n" VMASS_MONITOR_BIN " --config " + config + " --rates 6 > " +
+          path("rates.txt") + "\n"
+          "monitor=$?\n"
+          "kill -TERM $daemon\n"
+          "wait $daemon\n"
+          "exit $monitor\n"));
+  ASSERT_EQ(run("unshare -n sh " + script), 0) << read("rates.txt") << read("daemon.log");
+  const std::string rates = read("rates.txt");
+  double estimate_hz = 0.0, status_hz = 0.0;
+  long estimates = 0, statuses = 0, bad_e = -1, bad_s = -1;
+  ASSERT_EQ(std::sscanf(rates.c_str(),
+                        "VMASS_ESTIMATE messages=%ld rate_hz=%lf nonfinite_fields=%ld\n"
+                        "VMASS_STATUS messages=%ld rate_hz=%lf nonfinite_fields=%ld",
+                        &estimates, &estimate_hz, &bad_e, &statuses, &status_hz, &bad_s),
+            6)
+      << rates;
+  EXPECT_NEAR(estimate_hz, 100.0, 5.0) << rates;  // within 5 %
+  EXPECT_NEAR(status_hz, 1.0, 0.05) << rates;
+  EXPECT_GE(estimates, 500);
+  EXPECT_GE(statuses, 5);
+  EXPECT_EQ(bad_e, 0);
+  EXPECT_EQ(bad_s, 0);
+  EXPECT_NE(read("daemon.log").find("stopped:"), std::string::npos);
+}
+#endif
+
+}  // namespace
+}  // namespace vmass
+
+#endif  // VMASSD_BIN
