@@ -164,7 +164,7 @@ class Parser {
       const std::string_view kw = read_word();
       statement(kw);
     }
-    if (!failed_) finish();
+    finish();  // also after an error: what was loaded is checked and stays consistent
   }
 
  private:
