@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "vmass/sim/scenario.hpp"
+#include "vmass/sim/static_ballast.hpp"
 
 namespace vmass::sim {
 
@@ -182,6 +183,7 @@ const std::vector<std::pair<const char*, std::function<Scenario()>>>& registry()
       {"paper_exp2", paper_exp2},
       {"load_step", load_step},
       {"steady_turn", steady_turn},
+      {"static_ballast", [] { return static_ballast_scenario(); }},
   };
   return r;
 }

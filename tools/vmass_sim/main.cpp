@@ -17,6 +17,7 @@
 #include "vmass/sim/csv_writer.hpp"
 #include "vmass/sim/scenario.hpp"
 #include "vmass/sim/simulator.hpp"
+#include "vmass/sim/static_ballast.hpp"
 
 namespace {
 
@@ -94,6 +95,9 @@ int main(int argc, char** argv) {
   if (auto m = vmass::sim::simulate(*scenario, options, &result); !m.empty()) return fail(m);
   if (auto m = vmass::sim::write_csv_files(result, out_dir); !m.empty()) return fail(m);
   if (auto m = vmass::sim::write_config_file(result, out_dir); !m.empty()) return fail(m);
+  if (result.scenario == "static_ballast") {  // + ballast.csv, suspension_truth.yaml
+    if (auto m = vmass::sim::write_ballast_files(result, out_dir); !m.empty()) return fail(m);
+  }
 
   std::cout << "vmass-sim: " << result.scenario << ", seed " << result.seed << ", noise "
             << vmass::sim::noise_set_name(result.noise) << ": " << result.samples.size()
