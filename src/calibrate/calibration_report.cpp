@@ -90,6 +90,7 @@ void json_stats(std::string* out, const FitStats& s) {
   *out += "\"steps_used\": " + std::to_string(s.steps_used) +
           ", \"robust_scale_mm\": " + json_num(s.robust_scale_mm) +
           ", \"residual_std_mm\": " + json_num(s.residual_std_mm) +
+          ", \"step_se_mm\": " + json_num(s.step_se_mm) +
           ", \"effective_dof\": " + json_num(s.effective_dof) + ", \"cost\": " + json_num(s.cost) +
           ", \"iterations\": " + std::to_string(s.iterations) +
           ", \"termination\": " + json_str(s.termination);
@@ -234,9 +235,9 @@ std::string calibration_text(const SuspensionCalibration& cal,
        " steps at or below the knee\n";
   o += "  stiffness       " + estimate_text(lin.stiffness_n_per_m, 1.0, 1, "N/m", conf) + "\n";
   o += "  zero offset     " + estimate_text(lin.zero_offset_m, 1e3, 4, "mm", conf) + "\n";
-  o += "  residual std    " + fixed(lin.stats.residual_std_mm, 4) + " mm (Cauchy scale " +
-       fixed(lin.stats.robust_scale_mm, 4) + " mm, dof " + fixed(lin.stats.effective_dof, 1) +
-       ", " + lin.stats.termination + ")\n";
+  o += "  residual std    " + fixed(lin.stats.residual_std_mm, 4) + " mm, step mean s.e. " +
+       fixed(lin.stats.step_se_mm, 4) + " mm (Cauchy scale " + fixed(lin.stats.robust_scale_mm, 4) +
+       " mm, dof " + fixed(lin.stats.effective_dof, 1) + ", " + lin.stats.termination + ")\n";
   o += "progressive model dF = c (z - z0) + k2 max(0, z - z_knee)^2: " +
        std::string(pr.detected ? "bump stop detected" : "no bump stop (" + pr.reason + ")") + "\n";
   if (std::isfinite(pr.stiffness_n_per_m.value)) {
@@ -244,9 +245,10 @@ std::string calibration_text(const SuspensionCalibration& cal,
     o += "  zero offset     " + estimate_text(pr.zero_offset_m, 1e3, 4, "mm", conf) + "\n";
     o += "  knee            " + estimate_text(pr.knee_m, 1e3, 3, "mm", conf) + "\n";
     o += "  rate            " + estimate_text(pr.rate_n_per_m2, 1e-6, 4, "N/mm^2", conf) + "\n";
-    o += "  residual std    " + fixed(pr.stats.residual_std_mm, 4) + " mm (Cauchy scale " +
-         fixed(pr.stats.robust_scale_mm, 4) + " mm, dof " + fixed(pr.stats.effective_dof, 1) +
-         "); F " + fixed(pr.f_statistic, 1) + " vs critical " + fixed(pr.f_critical, 2) + "\n";
+    o += "  residual std    " + fixed(pr.stats.residual_std_mm, 4) + " mm, step mean s.e. " +
+         fixed(pr.stats.step_se_mm, 4) + " mm (Cauchy scale " + fixed(pr.stats.robust_scale_mm, 4) +
+         " mm, dof " + fixed(pr.stats.effective_dof, 1) + "); F " + fixed(pr.f_statistic, 1) +
+         " vs critical " + fixed(pr.f_critical, 2) + "\n";
   }
   o += "linear range      " + num(cal.linear_range_kg, "%g") +
        " kg (largest load the linear model reproduces within " +

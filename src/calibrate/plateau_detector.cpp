@@ -48,6 +48,7 @@ std::string PlateauParams::validate() const {
   c.non_negative("standstill_speed_mps", standstill_speed_mps);
   c.positive("window_s", window_s);
   c.positive("steady_std_factor", steady_std_factor);
+  c.positive("steady_drift_sigma", steady_drift_sigma);
   c.positive("min_noise_m", min_noise_m);
   c.non_negative("settle_s", settle_s);
   c.positive("min_plateau_s", min_plateau_s);
@@ -136,7 +137,12 @@ PlateauDetection detect_plateaus(const std::vector<DeflectionPoint>& series,
     const double count = static_cast<double>(hi - lo + 1);
     const double sum = s1[hi + 1] - s1[lo];
     const double var = std::max(0.0, (s2[hi + 1] - s2[lo] - sum * sum / count) / (count - 1.0));
-    steady[i] = std::sqrt(var) <= params.steady_std_factor * sigma;
+    // No drift: the means of the window's two halves agree within steady_drift_sigma of
+    // their difference's std, 2 sigma / sqrt(count) (a slow ramp passes the std test alone).
+    const std::size_t mid = lo + (hi - lo) / 2;
+    const double drift = window_mean(mid + 1, hi) - window_mean(lo, mid);
+    steady[i] = std::sqrt(var) <= params.steady_std_factor * sigma &&
+                std::abs(drift) <= params.steady_drift_sigma * 2.0 * sigma / std::sqrt(count);
   }
 
   // 3.-5. Runs, trimmed of their settling transient.
@@ -157,11 +163,7 @@ PlateauDetection detect_plateaus(const std::vector<DeflectionPoint>& series,
 
     std::size_t k = a;
     while (k <= b && series[k].time_s < series[a].time_s + params.settle_s) ++k;
-    if (k > b) {
-      out.notes.push_back("steady run " + span(series[a].time_s, series[b].time_s) +
-                          " shorter than the settling time; ignored");
-      continue;
-    }
+    if (k > b) continue;  // shorter than the settling time (typically inside a ramp)
     std::vector<double> second_half;
     for (std::size_t j = k + (b - k) / 2; j <= b; ++j)
       second_half.push_back(series[j].deflection_m);

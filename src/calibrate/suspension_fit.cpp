@@ -27,6 +27,7 @@ constexpr int kMaxRobustPasses = 6;
 struct Data {
   std::vector<double> force_n;
   std::vector<double> z_mm;
+  std::vector<double> se2_mm2;  ///< squared standard error of each step mean (0: one sample)
   std::size_t size() const { return z_mm.size(); }
 };
 
@@ -146,8 +147,12 @@ double median_abs(const std::vector<double>& r) {
   return a.size() % 2 ? a[m] : 0.5 * (a[m - 1] + a[m]);
 }
 
-double next_scale(const std::vector<double>& residuals, const SuspensionFitOptions& o) {
-  return std::max(o.min_robust_scale_mm, 3.0 * 1.4826 * median_abs(residuals));
+// 3 robust sigmas: 1.4826 median|r|, corrected for the p parameters the fit absorbed.
+double next_scale(const std::vector<double>& residuals, int parameters,
+                  const SuspensionFitOptions& o) {
+  const double n = static_cast<double>(residuals.size());
+  const double absorbed = n > parameters ? std::sqrt(n / (n - parameters)) : 1.0;
+  return std::max(o.min_robust_scale_mm, 3.0 * 1.4826 * median_abs(residuals) * absorbed);
 }
 
 double cauchy_weight(double r, double scale_mm) {
@@ -197,23 +202,29 @@ bool progressive_start(const Data& d, double knee_mm, ProgressiveParams* p) {
 }
 
 struct Uncertainty {
-  double residual_std = kNaN;
+  double residual_std = kNaN;  ///< s from the residuals
+  double step_se = 0.0;        ///< RMS standard error of the step means (0: unknown)
+  double scale = kNaN;         ///< max(residual_std, step_se): what the covariance is scaled by
   double dof = 0.0;
   double t = kNaN;
 };
 
-Uncertainty uncertainty(const std::vector<double>& residuals, double scale_mm, int parameters,
-                        double confidence) {
-  double sw = 0.0, swr2 = 0.0;
-  for (double r : residuals) {
-    const double w = cauchy_weight(r, scale_mm);
+// step_se2: the step means' squared standard errors (0 when a step has one sample).
+Uncertainty uncertainty(const std::vector<double>& residuals, const std::vector<double>& step_se2,
+                        double scale_mm, int parameters, double confidence) {
+  double sw = 0.0, swr2 = 0.0, swse2 = 0.0;
+  for (std::size_t k = 0; k < residuals.size(); ++k) {
+    const double w = cauchy_weight(residuals[k], scale_mm);
     sw += w;
-    swr2 += w * r * r;
+    swr2 += w * residuals[k] * residuals[k];
+    swse2 += w * step_se2[k];
   }
   Uncertainty u;
   u.dof = sw - parameters;
+  if (sw > 0.0) u.step_se = std::sqrt(swse2 / sw);
   if (u.dof < 0.5) return u;
   u.residual_std = std::sqrt(swr2 / u.dof);
+  u.scale = std::max(u.residual_std, u.step_se);
   u.t = boost::math::quantile(boost::math::students_t(u.dof), 0.5 * (1.0 + confidence));
   return u;
 }
@@ -222,8 +233,8 @@ Estimate estimate(double value, double variance_unscaled, const Uncertainty& u, 
                   bool covariance_ok) {
   Estimate e;
   e.value = value * to_si;
-  if (!covariance_ok || !std::isfinite(u.residual_std) || !(variance_unscaled >= 0.0)) return e;
-  e.std = std::sqrt(variance_unscaled) * u.residual_std * to_si;
+  if (!covariance_ok || !std::isfinite(u.scale) || !(variance_unscaled >= 0.0)) return e;
+  e.std = std::sqrt(variance_unscaled) * u.scale * to_si;
   e.low = e.value - u.t * e.std;
   e.high = e.value + u.t * e.std;
   return e;
@@ -299,6 +310,9 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
   for (const BallastStep& s : steps) {
     data.force_n.push_back(geometry.wheel_force_n(s.added_mass_kg));
     data.z_mm.push_back(s.deflection_m * 1e3);
+    const double se_mm =
+        s.sample_count > 1 ? s.deflection_std_m * 1e3 / std::sqrt(s.sample_count) : 0.0;
+    data.se2_mm2.push_back(std::isfinite(se_mm) ? se_mm * se_mm : 0.0);
   }
   const std::size_t n = data.size();
   std::vector<std::size_t> all(n);
@@ -363,7 +377,7 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
       for (std::size_t k = 0; k < n; ++k) {
         r[k] = data.z_mm[k] - progressive_prediction(prog, data.force_n[k]);
       }
-      const double next = next_scale(r, options);
+      const double next = next_scale(r, 4, options);
       if (std::abs(next - prog_scale) <= 0.1 * prog_scale) break;
       prog_scale = next;
     }
@@ -374,11 +388,12 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
     for (std::size_t k = 0; k < n; ++k) {
       r[k] = data.z_mm[k] - progressive_prediction(prog, data.force_n[k]);
     }
-    const Uncertainty u = uncertainty(r, prog_scale, 4, options.confidence);
+    const Uncertainty u = uncertainty(r, data.se2_mm2, prog_scale, 4, options.confidence);
     ProgressiveFit& pf = cal.progressive;
     pf.stats.steps_used = static_cast<int>(n);
     pf.stats.robust_scale_mm = prog_scale;
     pf.stats.residual_std_mm = u.residual_std;
+    pf.stats.step_se_mm = u.step_se;
     pf.stats.effective_dof = u.dof;
     pf.stats.cost = prog_solve.cost;
     pf.stats.iterations = prog_solve.iterations;
@@ -456,7 +471,7 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
     std::vector<double> r;
     for (std::size_t k : lin_idx)
       r.push_back(data.z_mm[k] - linear_prediction(lin, data.force_n[k]));
-    const double next = next_scale(r, options);
+    const double next = next_scale(r, 2, options);
     if (std::abs(next - lin_scale) <= 0.1 * lin_scale) break;
     lin_scale = next;
   }
@@ -465,10 +480,12 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
     return result;
   }
   {
-    std::vector<double> r;
-    for (std::size_t k : lin_idx)
+    std::vector<double> r, se2;
+    for (std::size_t k : lin_idx) {
       r.push_back(data.z_mm[k] - linear_prediction(lin, data.force_n[k]));
-    const Uncertainty u = uncertainty(r, lin_scale, 2, options.confidence);
+      se2.push_back(data.se2_mm2[k]);
+    }
+    const Uncertainty u = uncertainty(r, se2, lin_scale, 2, options.confidence);
     Eigen::MatrixXd c;
     bool ok = false;
     {
@@ -485,6 +502,7 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
     cal.linear.stats.steps_used = static_cast<int>(lin_idx.size());
     cal.linear.stats.robust_scale_mm = lin_scale;
     cal.linear.stats.residual_std_mm = u.residual_std;
+    cal.linear.stats.step_se_mm = u.step_se;
     cal.linear.stats.effective_dof = u.dof;
     cal.linear.stats.cost = lin_solve.cost;
     cal.linear.stats.iterations = lin_solve.iterations;

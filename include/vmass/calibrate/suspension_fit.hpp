@@ -10,9 +10,11 @@
 //  1. check_steps() (>= 3 distinct loads, finite, deflection strictly increasing with load).
 //  2. Robust loss: Cauchy, rho(s) = a^2 log(1 + s / a^2), so that one bad step is down-weighted
 //     instead of bending the fit. The scale a is `robust_scale_mm` when given, else it is
-//     re-estimated from the residuals, a = max(min_robust_scale_mm, 3 * 1.4826 median|r|), and
-//     the fit repeated until a settles (at most 6 passes, starting from 1 % of the deflection
-//     range).
+//     re-estimated from the residuals, a = max(min_robust_scale_mm, 3 * 1.4826 median|r|
+//     sqrt(n / (n - p))) (three robust sigmas, corrected for the p parameters the fit absorbs),
+//     and the fit repeated until a settles (at most 6 passes, starting from 1 % of the
+//     deflection range). The floor keeps steps from being called outliers for residuals below
+//     what a deflection sensor resolves.
 //  3. Progressive model, when there are >= min_steps_below_knee + min_steps_beyond_knee steps.
 //     The knee makes the cost non-smooth in z_knee (second derivatives jump whenever the knee
 //     crosses a step), so the knee is found on a grid and then refined: for each gap between
@@ -30,9 +32,13 @@
 //     n - 4), alpha = progressive_significance.
 //  4. Linear model: fitted on the steps at or below the knee (all steps without a bump stop).
 //  5. Uncertainty: ceres::Covariance (dense SVD) gives (J^T J)^-1 of the robustified problem at
-//     the solution; it is scaled by s^2 = sum w_k r_k^2 / (sum w_k - p), w_k = rho'(r_k^2) the
-//     Cauchy weights, p the parameter count. Intervals are value +- t_{(1+confidence)/2,
-//     sum w - p} std (Student t). Every final solve must pass Summary::IsSolutionUsable().
+//     the solution; it is scaled by s^2 = max(sum w_k r_k^2 / (sum w_k - p), se^2), w_k =
+//     rho'(r_k^2) the Cauchy weights, p the parameter count, se^2 = sum w_k se_k^2 / sum w_k the
+//     steps' own squared standard errors (se_k = s_k / sqrt(n_k) from their samples; 0 for a
+//     one-sample step): with few steps the residuals alone can be luckily small, and the scatter
+//     of the step means cannot be smaller than their sampling noise. Intervals are
+//     value +- t_{(1+confidence)/2, sum w - p} std (Student t). Every solve must pass
+//     Summary::IsSolutionUsable().
 //  6. Steps with |r| > 2 a (weight < 0.2) are reported as outliers.
 //  7. Linear range: the largest added load m_k such that every non-outlier step with
 //     0 < m <= m_k is reproduced by the linear model within linear_tolerance:
@@ -56,7 +62,7 @@ namespace vmass::calibrate {
 struct SuspensionFitOptions {
   double linear_tolerance = 0.01;          ///< linear range: relative error of the added load
   double robust_scale_mm = 0.0;            ///< Cauchy scale a; 0: estimated from the residuals
-  double min_robust_scale_mm = 0.002;      ///< floor of the estimated scale
+  double min_robust_scale_mm = 0.01;       ///< floor of a (sensor resolution), mm
   int knee_grid_per_gap = 8;               ///< knee candidates between two step deflections
   int min_steps_below_knee = 3;            ///< the linear part must keep its own uncertainty
   int min_steps_beyond_knee = 2;           ///< d and k2 need two steps beyond the knee
@@ -78,7 +84,8 @@ struct Estimate {
 struct FitStats {
   int steps_used = 0;
   double robust_scale_mm = 0.0;  ///< Cauchy a of the final pass
-  double residual_std_mm = 0.0;  ///< s
+  double residual_std_mm = 0.0;  ///< from the residuals
+  double step_se_mm = 0.0;       ///< RMS standard error of the step means (0: unknown)
   double effective_dof = 0.0;    ///< sum w - p
   double cost = 0.0;             ///< Ceres' final cost (robust)
   int iterations = 0;            ///< of the final solve
