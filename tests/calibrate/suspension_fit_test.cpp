@@ -10,6 +10,7 @@
 #include "synthetic_ballast.hpp"
 #include "vmass/calibrate/calibration_report.hpp"
 #include "vmass/config/config.hpp"
+#include "vmass/core/static_initializer.hpp"
 
 namespace vmass::calibrate {
 namespace {
@@ -236,6 +237,17 @@ TEST(SuspensionFit, MassCheckMatchesEquationThreeAndTheProgressiveCurveStaysWith
   }
   EXPECT_GT(std::abs(rows.back().linear_error), 0.03);  // the linear model saturates
   EXPECT_TRUE(rows.back().beyond_linear_range);
+
+  // With the written curve, the static initialisation trusts loads up to the calibrated range
+  // (800 kg) and flags heavier ones as uncertain (wider prior).
+  const StaticInitializer init(v, r.calibration->suspension_params(), StaticInitParams{});
+  const double z_800 = testing::deflection_for_force(true_progressive(), g.wheel_force_n(790.0));
+  const double z_900 = testing::deflection_for_force(true_progressive(), g.wheel_force_n(900.0));
+  EXPECT_FALSE(init.static_mass_for(z_800, 0.0).beyond_calibrated_range);
+  const StaticMass heavy = init.static_mass_for(z_900, 0.0);
+  EXPECT_TRUE(heavy.beyond_calibrated_range);
+  EXPECT_NEAR(heavy.prior.mass_kg, 2400.0, 0.01 * 2400.0);  // the curve still extrapolates well
+  EXPECT_EQ(heavy.prior.mass_std_kg, StaticInitParams{}.out_of_range_prior_std_kg);
 }
 
 }  // namespace

@@ -1,0 +1,82 @@
+#!/bin/sh
+# Command-line contract of vmass-calibrate: cli_test.sh CASE CALIBRATE_BIN WORK_DIR [SIM_BIN]
+# Each case prints what it checked and exits non-zero on failure.
+set -u
+case_name=$1
+tool=$2
+work=$3
+sim=${4:-}
+rm -rf "$work" && mkdir -p "$work" || exit 1
+cd "$work" || exit 1
+
+geometry="--wheelbase-m 2.7 --cg-to-front-axle-m 1.2"
+
+# expect_error RC PATTERN ARGS...: the tool exits with RC and stderr contains PATTERN.
+expect_error() {
+  want_rc=$1
+  pattern=$2
+  shift 2
+  "$tool" "$@" >out.txt 2>err.txt
+  rc=$?
+  if [ "$rc" -ne "$want_rc" ]; then
+    echo "FAIL: exit $rc, want $want_rc: $*"; cat err.txt; exit 1
+  fi
+  if ! grep -q -- "$pattern" err.txt; then
+    echo "FAIL: stderr lacks '$pattern': $*"; cat err.txt; exit 1
+  fi
+  echo "ok: exit $rc with '$pattern'"
+}
+
+good_steps() {
+  printf 'added_mass_kg,rear_right_deflection_mm\n0,12.00\n100,19.26\n200,26.53\n300,33.79\n400,41.05\n' >"$1"
+}
+
+case "$case_name" in
+  nan)
+    printf 'added_mass_kg,rear_right_deflection_mm\n0,12\n100,nan\n200,26\n' >s.csv
+    expect_error 2 "s.csv:3: rear_right_deflection_mm: NaN" --ballast s.csv $geometry ;;
+  two_loads)
+    printf 'added_mass_kg,rear_right_deflection_mm\n0,12\n0,12.1\n100,19\n' >s.csv
+    expect_error 2 "at least three distinct loads" --ballast s.csv $geometry ;;
+  not_increasing)
+    printf 'added_mass_kg,rear_right_deflection_mm\n0,12\n100,19\n200,18\n' >s.csv
+    expect_error 2 "does not increase with the load" --ballast s.csv $geometry ;;
+  unknown_unit)
+    printf 'added_mass_kg,rear_right_deflection_furlong\n0,12\n' >s.csv
+    expect_error 2 "unknown unit 'furlong'" --ballast s.csv $geometry ;;
+  number_with_unit)
+    printf 'added_mass_kg,rear_right_deflection_mm\n0,12 mm\n' >s.csv
+    expect_error 2 "'12 mm' is not a number" --ballast s.csv $geometry ;;
+  candump_log)
+    printf '(1700000000.000000) can0 123#0011223344556677\n' >test.log
+    expect_error 2 "candump -l log" --ballast test.log $geometry ;;
+  series_needs_masses)
+    printf 'time_s,rear_right_deflection_m\n0,0.012\n0.01,0.012\n' >t.csv
+    expect_error 2 "give the ballast of each plateau with --masses" --ballast t.csv $geometry ;;
+  no_geometry)
+    good_steps s.csv
+    expect_error 2 "vehicle.wheelbase_m" --ballast s.csv ;;
+  plot_json_snippet)
+    good_steps s.csv
+    "$tool" --ballast s.csv $geometry --empty-mass-kg 1500 --plot p.png --write-config susp.yaml \
+      --json >out.json 2>err.txt || { echo "FAIL: exit $?"; cat err.txt; exit 1; }
+    head -c 8 p.png | od -An -c | grep -q 'P   N   G' || { echo "FAIL: no PNG"; exit 1; }
+    grep -q '^suspension:' susp.yaml || { echo "FAIL: no snippet"; exit 1; }
+    for key in stiffness_n_per_m stiffness_std_n_per_m zero_offset_mm linear_range_kg \
+               '"progressive"' mass_check; do
+      grep -q "$key" out.json || { echo "FAIL: JSON lacks $key"; exit 1; }
+    done
+    echo "ok: PNG, snippet and JSON written" ;;
+  sim_end_to_end)
+    "$sim" --scenario static_ballast --seed 4 --out sb >/dev/null || exit 1
+    test -s sb/ballast.csv && test -s sb/suspension_truth.yaml || { echo "FAIL: sim files"; exit 1; }
+    "$tool" --ballast sb/ballast.csv --config sb/config.yaml --json >csv.json || exit 1
+    "$tool" --ballast sb/samples.csv --masses 0:100:800 --config sb/config.yaml --json \
+      >series.json || exit 1
+    grep -q '"detected": true' csv.json && grep -q '"detected": true' series.json ||
+      { echo "FAIL: bump stop not detected"; exit 1; }
+    grep -q '"linear_range_kg": 400,' csv.json || { echo "FAIL: linear range"; exit 1; }
+    echo "ok: static_ballast calibrated from ballast.csv and from samples.csv" ;;
+  *)
+    echo "unknown case $case_name"; exit 2 ;;
+esac
