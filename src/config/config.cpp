@@ -47,6 +47,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
   r.read("differencing_dt_s", &e->differencing.differencing_dt_s);
   r.read("filter_cutoff_hz", &e->differencing.filter_cutoff_hz);
   r.read("converged_ci_halfwidth_fraction", &e->converged_ci_halfwidth_fraction);
+  r.read("pair_correlation_ticks", &e->pair_correlation_ticks);
   {
     YamlReader s = r.child("static_init");
     StaticInitParams& p = e->static_init;

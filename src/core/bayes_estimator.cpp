@@ -22,7 +22,8 @@ using NoThrowPolicy = boost::math::policies::policy<
 
 bool pair_is_usable(const RegressionPair& pair) {
   return std::isfinite(pair.y_n) && std::isfinite(pair.delta_accel_mps2) &&
-         std::isfinite(pair.weight) && pair.weight > 0.0;
+         std::isfinite(pair.weight) && pair.weight > 0.0 && pair.information > 0.0 &&
+         pair.information <= 1.0;
 }
 
 void symmetrise(Eigen::Matrix2d& m) {
@@ -66,7 +67,7 @@ bool try_conjugate_update(const NigPosterior& prior, const BayesEstimator::Suffi
   NigPosterior next;
   next.mean = batch.origin + delta_n;
   next.scaled_covariance = v_n;
-  next.shape = prior.shape + 0.5 * static_cast<double>(batch.count);
+  next.shape = prior.shape + 0.5 * batch.effective_count;
   next.scale = prior.scale + 0.5 * std::max(quad, 0.0);
   if (!next.mean.allFinite() || !is_spd(next.scaled_covariance) ||
       !(std::isfinite(next.shape) && next.shape > 0.0) ||
@@ -92,9 +93,11 @@ void BayesEstimator::Sufficient::add(const RegressionPair& pair) {
   if (!pair_is_usable(pair)) return;
   const Eigen::Vector2d phi(pair.delta_accel_mps2, 1.0);
   const double e = pair.y_n - phi.dot(origin);
-  phi_t_w_phi.noalias() += pair.weight * phi * phi.transpose();
-  phi_t_w_y += (pair.weight * e) * phi;
-  y_t_w_y += pair.weight * e * e;
+  const double w = pair.weight * pair.information;
+  phi_t_w_phi.noalias() += w * phi * phi.transpose();
+  phi_t_w_y += (w * e) * phi;
+  y_t_w_y += w * e * e;
+  effective_count += pair.information;
   ++count;
 }
 

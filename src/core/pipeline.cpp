@@ -1,5 +1,6 @@
 #include "vmass/core/pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "vmass/core/param_check.hpp"
@@ -20,7 +21,21 @@ std::string EstimatorParams::validate() const {
   c.nested(rls.validate());
   c.nested(bayes.validate());
   c.in_open_range("converged_ci_halfwidth_fraction", converged_ci_halfwidth_fraction, 0.0, 1.0);
+  if (!(pair_correlation_ticks == 0.0 || pair_correlation_ticks >= 1.0)) {
+    c.fail("pair_correlation_ticks", "must be 0 (automatic) or >= 1");
+  }
   return c.message();
+}
+
+double EstimatorParams::effective_pair_correlation_ticks() const {
+  if (pair_correlation_ticks >= 1.0) return pair_correlation_ticks;
+  if (differencing.filter_cutoff_hz > 0.0) {
+    // The low-pass's time constant 1 / (2 pi f_c), in ticks: about how long its output noise
+    // stays correlated (3.2 ticks for 5 Hz at 100 Hz).
+    constexpr double kTwoPi = 6.283185307179586;
+    return std::max(1.0, differencing.tick_rate_hz / (kTwoPi * differencing.filter_cutoff_hz));
+  }
+  return 1.0;
 }
 
 std::string PipelineParams::validate() const {
@@ -41,7 +56,8 @@ Pipeline::Pipeline(const PipelineParams& params)
       bayes_(params.estimator.bayes),
       regressor_(params.estimator.type == RegressorType::kRls
                      ? static_cast<MassRegressor*>(&rls_)
-                     : static_cast<MassRegressor*>(&bayes_)) {}
+                     : static_cast<MassRegressor*>(&bayes_)),
+      pair_information_(1.0 / params.estimator.effective_pair_correlation_ticks()) {}
 
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   regressor_->reset(prior);
@@ -81,8 +97,10 @@ StepResult Pipeline::step(const Sample& sample) {
 
   if (has_prior_) {
     // Extractors run on every tick (their filters need continuity); the supervisor decides.
-    const Extraction longitudinal = longitudinal_.step(sample);
-    const Extraction lateral = lateral_.step(sample);
+    Extraction longitudinal = longitudinal_.step(sample);
+    Extraction lateral = lateral_.step(sample);
+    longitudinal.pair.information = pair_information_;
+    lateral.pair.information = pair_information_;
     result.events[static_cast<int>(Block::kLongitudinal)] = supervisor_.offer(
         Block::kLongitudinal, longitudinal, *regressor_, &result.estimate_changed);
     result.events[static_cast<int>(Block::kLateral)] =

@@ -14,7 +14,8 @@ namespace {
 
 bool pair_is_usable(const RegressionPair& pair) {
   return std::isfinite(pair.y_n) && std::isfinite(pair.delta_accel_mps2) &&
-         std::isfinite(pair.weight) && pair.weight > 0.0;
+         std::isfinite(pair.weight) && pair.weight > 0.0 && pair.information > 0.0 &&
+         pair.information <= 1.0;
 }
 
 }  // namespace
@@ -88,7 +89,8 @@ PairPrediction RlsEstimator::predict(const RegressionPair& pair) const {
 bool RlsEstimator::update(const RegressionPair& pair) {
   if (!pair_is_usable(pair)) return false;
   const Eigen::Vector2d phi(pair.delta_accel_mps2, 1.0);
-  const double r = noise_var_n2_ / pair.weight;
+  // Precision of the pair as an observation among correlated neighbours (see RegressionPair).
+  const double r = noise_var_n2_ / (pair.weight * pair.information);
   const Eigen::Vector2d p_phi = p_ * phi;
   const double s = phi.dot(p_phi) + r;
   if (!(std::isfinite(s) && s > 0.0)) return false;

@@ -103,6 +103,7 @@ class BayesEstimator final : public MassRegressor {
     Eigen::Vector2d phi_t_w_y = Eigen::Vector2d::Zero();
     double y_t_w_y = 0.0;
     int count = 0;
+    double effective_count = 0.0;  ///< sum of the pairs' information (the shape's n)
     void add(const RegressionPair& pair);
   };
   /// One conjugate update of `prior` by the sufficient statistics of a set of pairs.

@@ -8,6 +8,11 @@
 //
 // The weight lets blocks with different noise levels share one regression (longitudinal and
 // lateral pairs are not equally precise); weight 1 is the reference block.
+// The information is how many independent observations the pair is worth: pairs taken every
+// tick from low-pass filtered signals share their noise with their neighbours, and counting
+// each as a full observation would make the interval too narrow. The regressors use
+// weight * information as the pair's precision and information as its count (Bayes' shape),
+// while the innovation gate uses the pair's own noise (weight only).
 #pragma once
 
 #include <cstdint>
@@ -27,6 +32,7 @@ struct RegressionPair {
   double y_n = 0.0;               ///< differenced force, N
   double delta_accel_mps2 = 0.0;  ///< phi[0], differenced acceleration, m/s^2
   double weight = 1.0;            ///< relative precision, > 0
+  double information = 1.0;       ///< independent observations this pair is worth, in (0, 1]
 };
 
 }  // namespace vmass
