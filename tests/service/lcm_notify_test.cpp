@@ -195,6 +195,39 @@ TEST(LcmRoundTrip, DecimationAndPairsOffByDefault) {
   EXPECT_EQ(publisher.estimates_published(), 3);
 }
 
+// The generated Python types decode what C++ encodes (same fingerprint, same fields). They need
+// only Python's standard library for that (publishing needs the `lcm` module).
+TEST(LcmTypes, PythonDecodesWhatCppEncodes) {
+  if (std::system("python3 -c 'import struct' > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "python3 not found";
+  }
+  vmass::mass_estimate_t m;
+  to_lcm(make_record(7), "bayes", &m);
+  std::vector<std::uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
+  ASSERT_EQ(m.encode(buf.data(), 0, static_cast<int>(buf.size())), static_cast<int>(buf.size()));
+  const std::string bin = "/tmp/vmass_py_" + std::to_string(::getpid()) + ".bin";
+  const std::string out = bin + ".txt";
+  FILE* f = std::fopen(bin.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  std::fwrite(buf.data(), 1, buf.size(), f);
+  std::fclose(f);
+  const std::string script =
+      "import sys; sys.path.insert(0, '" VMASS_LCMTYPES_PYTHON_DIR "'); import vmass; "
+      "m = vmass.mass_estimate_t.decode(open('" + bin + "', 'rb').read()); "
+      "print(repr(m.mass_kg), m.tick, m.status_name, m.reason_name, m.estimator, "
+      "m.longitudinal_accepted, repr(m.mass_ci_high_kg))";
+  ASSERT_EQ(std::system(("python3 -c \"" + script + "\" > " + out).c_str()), 0);
+  char line[512] = {};
+  f = std::fopen(out.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  ASSERT_NE(std::fgets(line, sizeof line, f), nullptr);
+  std::fclose(f);
+  std::remove(bin.c_str());
+  std::remove(out.c_str());
+  // 1719.25 and 1746.75 are exact in binary: Python's repr prints them exactly.
+  EXPECT_STREQ(line, "1719.25 7 converging refining bayes 250 1746.75\n");
+}
+
 // ------------------------------------------------------------------------------ sd_notify
 
 class NotifySocket {

@@ -236,8 +236,12 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
         std::max<std::int64_t>(1, static_cast<std::int64_t>(kNsPerSecond / plan.period_ns));
     TimeUs last_record_us = 0;
     bool has_record = false;
+    // A recording's record stamped T_k is applied by the receive thread at mono0 + k P; tick k
+    // wakes half a period later so that it sees that record (as offline replay does) unless the
+    // receive thread lags by more than P / 2.
+    const std::int64_t offset_ns = plan.recorded ? plan.period_ns / 2 : 0;
     while (!shared.stop.load(std::memory_order_relaxed)) {
-      const std::int64_t deadline = plan.mono0_ns + k * plan.period_ns;
+      const std::int64_t deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
       if (!sleep_until(deadline, shared.stop)) break;
       const std::int64_t wake = mono_ns();
       stats.on_wake(deadline, wake);
@@ -258,7 +262,7 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
       const svc::TickRecord& record = loop.tick(k, t, values);
       const std::int64_t done = mono_ns();
       ++k;
-      const std::int64_t next_deadline = plan.mono0_ns + k * plan.period_ns;
+      const std::int64_t next_deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
       stats.on_done(done - wake, done > next_deadline);
       after_tick(record, loop, shared, plan, stats, k - 1);
       // A long stall (suspend, debugger): give the missed ticks up, counted, after 1 s.
