@@ -56,11 +56,13 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.read("standstill_window_s", &p.standstill_window_s);
     s.read("max_deflection_std_m", &p.max_deflection_std_m);
     s.read("prior_std_kg", &p.prior_std_kg);
+    s.read("prior_std_fraction_of_added", &p.prior_std_fraction_of_added);
     s.read("out_of_range_prior_std_kg", &p.out_of_range_prior_std_kg);
     s.read("no_static_prior_std_kg", &p.no_static_prior_std_kg);
     s.read("mu_prior_std_n", &p.mu_prior_std_n);
     s.read("load_change_sigma", &p.load_change_sigma);
     s.read("min_load_change_m", &p.min_load_change_m);
+    s.read("max_grade_change_mps2", &p.max_grade_change_mps2);
     s.reject_unknown_keys();
   }
   {

@@ -69,7 +69,8 @@ TEST(StaticInitializer, AveragesNoisyStandstillWindow) {
   EXPECT_NEAR(to_seconds(result->time_us), 3.0, 0.02);
   // 200 samples of 0.3 mm noise: the mean is within ~0.1 mm, i.e. ~1.5 kg.
   EXPECT_NEAR(result->prior.mass_kg, 1700.0, 3.0);
-  EXPECT_DOUBLE_EQ(result->prior.mass_std_kg, StaticInitParams{}.prior_std_kg);
+  // 40 kg plus 15 % of the 200 kg added (the load may not sit at the centre of gravity).
+  EXPECT_NEAR(result->prior.mass_std_kg, 40.0 + 0.15 * (result->prior.mass_kg - 1500.0), 1e-9);
 }
 
 TEST(StaticInitializer, MovingResetsTheWindow) {
@@ -154,6 +155,41 @@ TEST(StaticInitializer, InvalidDeflectionNeverInitialises) {
     Sample nan = standing(t, std::nan(""));
     ASSERT_FALSE(init.step(nan));
   }
+}
+
+}  // namespace
+}  // namespace vmass
+
+namespace vmass {
+namespace {
+
+TEST(StaticInitializer, AnotherGradeIsNotALoadChange) {
+  const VehicleParams v = test_vehicle();
+  const SuspensionParams s = test_suspension();
+  StaticInitializer init(v, s, StaticInitParams{});
+  TimeUs t = 0;
+  // deflection_mm shift stands for the load moved between axles by the slope.
+  auto stand = [&](double seconds, double deflection_m, double grade_accel) {
+    std::optional<StaticMass> last;
+    const TimeUs end = t + from_seconds(seconds);
+    for (; t < end; t += 10'000) {
+      Sample x = standing(t, deflection_m);
+      x.set(Input::kAccelX, grade_accel);
+      if (auto r = init.step(x)) last = r;
+    }
+    return last;
+  };
+  const double level = deflection_for(1650.0, v, s);
+  ASSERT_TRUE(stand(4.0, level, 0.0));
+  // Parked on a 3 % slope: the rear deflection moves by 1.2 mm, the load did not change.
+  EXPECT_FALSE(stand(10.0, level + 0.0012, 0.29));
+  // Back on the level with the same load: nothing.
+  EXPECT_FALSE(stand(10.0, level, 0.01));
+  // On the level again with +150 kg: a load change.
+  auto changed = stand(10.0, deflection_for(1800.0, v, s), 0.0);
+  ASSERT_TRUE(changed);
+  EXPECT_TRUE(changed->load_changed);
+  EXPECT_NEAR(changed->grade_accel_mps2, 0.0, 1e-12);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 // Pure: time comes from the samples. Not thread-safe; no allocation.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -30,12 +31,15 @@ struct StaticInitParams {
   double settle_s = 1.0;
   double standstill_window_s = 2.0;
   double max_deflection_std_m = 0.002;
-  double prior_std_kg = 60.0;                ///< std of the static mass inside the calibrated range
+  double prior_std_kg = 40.0;                ///< std of the static mass in the calibrated range,
+  double prior_std_fraction_of_added = 0.15;  ///< plus this fraction of the added mass: eq. (3)
+                                             ///< puts the load at the centre of gravity
   double out_of_range_prior_std_kg = 250.0;  ///< beyond the linear/calibrated range
   double no_static_prior_std_kg = 400.0;     ///< driving before any standstill window
   double mu_prior_std_n = 300.0;             ///< prior std of the model imprecision mu
   double load_change_sigma = 6.0;
   double min_load_change_m = 0.0005;
+  double max_grade_change_mps2 = 0.1;  ///< |a_x| difference at rest (0.1 m/s^2 ~ 1 % grade)
 
   std::string validate() const;
 };
@@ -46,6 +50,7 @@ struct StaticMass {
   MassPrior prior;
   double deflection_m = 0.0;      ///< window mean
   double deflection_std_m = 0.0;  ///< window spread
+  double grade_accel_mps2 = 0.0;  ///< mean a_x over the window (g sin(grade)); NaN if unknown
   double added_mass_kg = 0.0;     ///< M_initial - M_idle
   bool load_changed = false;      ///< false for the first initialisation
   bool beyond_calibrated_range = false;
@@ -69,7 +74,8 @@ class StaticInitializer {
 
   bool initialised() const { return reference_.has_value(); }
   /// Restore after a restart (persistence): the reference deflection of the saved estimate.
-  void restore_reference(double deflection_m, double deflection_std_m);
+  void restore_reference(double deflection_m, double deflection_std_m,
+                         double grade_accel_mps2 = std::numeric_limits<double>::quiet_NaN());
   bool standing() const { return standing_; }
 
  private:
@@ -86,10 +92,13 @@ class StaticInitializer {
   long window_count_ = 0;
   double window_mean_ = 0.0;
   double window_m2_ = 0.0;
+  long grade_count_ = 0;
+  double grade_sum_ = 0.0;
 
   struct Reference {
     double deflection_m;
     double deflection_std_m;
+    double grade_accel_mps2;  ///< NaN when a_x was not valid
   };
   std::optional<Reference> reference_;
 };
