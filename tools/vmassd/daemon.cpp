@@ -381,6 +381,15 @@ bool save_snapshot(const std::string& path, const SnapshotSlot& slot, std::uint6
 
 int run(const Options& options) {
   const std::int64_t start_mono = mono_ns();
+  // Signals: taken by the main thread with sigtimedwait. Blocked first, so that every thread
+  // started later (ours, and any a library starts) inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGHUP);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  ::signal(SIGPIPE, SIG_IGN);
   // ------------------------------------------------------------------ configuration
   vmass::ConfigLoad loaded = vmass::load_config(options.config_path);
   if (!loaded.ok()) {
@@ -535,15 +544,6 @@ int run(const Options& options) {
   } else {
     plan.t0_us = realtime_us();
   }
-
-  // Signals: handled by the main thread only (blocked everywhere, taken with sigtimedwait).
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGTERM);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGHUP);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-  ::signal(SIGPIPE, SIG_IGN);
 
   Shared shared(static_cast<std::size_t>(settings.daemon.publish_queue));
   StatusContext ctx;
