@@ -129,9 +129,9 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
 LcmPublisher::LcmPublisher(lcm::LCM& lcm, const LcmSettings& settings, std::string estimator_name)
     : lcm_(lcm), settings_(settings), estimator_(std::move(estimator_name)) {
   buffer_.resize(64 * 1024);
-  for (std::string* s : {&estimate_msg_.estimator, &estimate_msg_.status_name,
-                         &estimate_msg_.reason_name, &pair_msg_.block_name,
-                         &pair_msg_.verdict_name}) {
+  for (std::string* s :
+       {&estimate_msg_.estimator, &estimate_msg_.status_name, &estimate_msg_.reason_name,
+        &pair_msg_.block_name, &pair_msg_.verdict_name}) {
     s->reserve(64);
   }
 }
@@ -143,7 +143,8 @@ bool LcmPublisher::publish(const std::string& channel, const Msg& msg) {
     ++failures_;
     return false;
   }
-  if (static_cast<std::size_t>(size) > buffer_.size()) buffer_.resize(static_cast<std::size_t>(size));
+  if (static_cast<std::size_t>(size) > buffer_.size())
+    buffer_.resize(static_cast<std::size_t>(size));
   if (msg.encode(buffer_.data(), 0, size) != size ||
       lcm_.publish(channel, buffer_.data(), static_cast<unsigned int>(size)) != 0) {
     ++failures_;

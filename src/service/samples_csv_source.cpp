@@ -7,8 +7,8 @@ SamplesCsvSource::SamplesCsvSource(const std::string& path, double timeout_s)
   for (TimeUs& t : timeouts_.timeout_us) t = from_seconds(timeout_s);
 }
 
-std::unique_ptr<SamplesCsvSource> SamplesCsvSource::open(const std::string& path,
-                                                         double timeout_s, std::string* error) {
+std::unique_ptr<SamplesCsvSource> SamplesCsvSource::open(const std::string& path, double timeout_s,
+                                                         std::string* error) {
   std::unique_ptr<SamplesCsvSource> source(new SamplesCsvSource(path, timeout_s));
   if (!source->reader_.error().empty()) {
     if (error) *error = source->reader_.error();

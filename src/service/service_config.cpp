@@ -44,8 +44,8 @@ std::string DaemonSettings::validate() const {
     return "daemon.can_interface: must be 1..15 characters";
   }
   if (!(persist_interval_s >= 0.1)) return "daemon.persist_interval_s: must be >= 0.1";
-  if (!(input_timeout_s > 0.0 && std::isfinite(input_timeout_s))) {
-    return "daemon.input_timeout_s: must be > 0";
+  if (!(input_timeout_s >= 0.0 && std::isfinite(input_timeout_s))) {
+    return "daemon.input_timeout_s: must be >= 0 (0: 5 ticks)";
   }
   if (publish_queue < 16 || publish_queue > (1 << 20)) {
     return "daemon.publish_queue: must be in [16, 1048576]";

@@ -84,8 +84,7 @@ std::string format_state(const SavedState& state) {
   put(&out, "nig_mean_0", s.nig_mean[0]);
   put(&out, "nig_mean_1", s.nig_mean[1]);
   for (int i = 0; i < 4; ++i) {
-    put(&out, ("nig_scaled_covariance_" + std::to_string(i)).c_str(),
-        s.nig_scaled_covariance[i]);
+    put(&out, ("nig_scaled_covariance_" + std::to_string(i)).c_str(), s.nig_scaled_covariance[i]);
   }
   put(&out, "nig_shape", s.nig_shape);
   put(&out, "nig_scale", s.nig_scale);
@@ -121,7 +120,8 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
     while (end > begin && (end[-1] == '\n' || end[-1] == '\r')) --end;
     const auto r = std::from_chars(begin, end, expected, 16);
     if (r.ec != std::errc() || r.ptr != end) return fail("malformed checksum line");
-    if (fnv1a(text.data(), checksum_at) != expected) return fail("checksum mismatch (corrupt file)");
+    if (fnv1a(text.data(), checksum_at) != expected)
+      return fail("checksum mismatch (corrupt file)");
   }
   std::map<std::string, std::string> values;
   std::istringstream in(text.substr(0, checksum_at));
@@ -193,7 +193,8 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   s.prior_reason = static_cast<StatusReason>(n);
   if (!get_double("prior_mass_kg", &s.prior.mass_kg) ||
       !get_double("prior_mass_std_kg", &s.prior.mass_std_kg) ||
-      !get_double("prior_mu_n", &s.prior.mu_n) || !get_double("prior_mu_std_n", &s.prior.mu_std_n)) {
+      !get_double("prior_mu_n", &s.prior.mu_n) ||
+      !get_double("prior_mu_std_n", &s.prior.mu_std_n)) {
     return false;
   }
   if (!get_long("pairs_used", &n)) return false;
@@ -278,7 +279,8 @@ bool save_state_file(const std::string& path, const SavedState& state, std::stri
   }
   // Make the rename itself durable.
   const std::size_t slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  const std::string dir =
+      slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
   const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {
     ::fsync(dfd);

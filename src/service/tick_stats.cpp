@@ -38,8 +38,8 @@ void LogHistogram::clear() {
 std::int64_t LogHistogram::percentile(double q) const {
   if (count_ == 0) return 0;
   q = std::clamp(q, 0.0, 1.0);
-  const auto needed =
-      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(q * static_cast<double>(count_))));
+  const auto needed = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::ceil(q * static_cast<double>(count_))));
   std::int64_t seen = 0;
   for (int b = 0; b < kBins; ++b) {
     seen += bins_[static_cast<std::size_t>(b)];

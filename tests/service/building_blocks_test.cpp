@@ -20,8 +20,8 @@ namespace {
 
 TEST(LogHistogram, BinsCoverEveryValueOnceAndInOrder) {
   // bin_upper(bin_of(v)) >= v, and the previous bin ends below v: bins tile the line.
-  for (std::int64_t v : {0LL, 1LL, 127LL, 128LL, 129LL, 255LL, 256LL, 1000LL, 4095LL, 4096LL,
-                         123456LL, 9999999LL}) {
+  for (std::int64_t v :
+       {0LL, 1LL, 127LL, 128LL, 129LL, 255LL, 256LL, 1000LL, 4095LL, 4096LL, 123456LL, 9999999LL}) {
     const int b = LogHistogram::bin_of(v);
     EXPECT_GE(LogHistogram::bin_upper(b), v) << v;
     if (b > 0) {

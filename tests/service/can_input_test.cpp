@@ -56,8 +56,8 @@ std::string write_log(const std::string& path) {
 
 TEST(CanInputSource, CandumpLogFramesAreClassifiedAndCounted) {
   const can::Decoder decoder = prius();
-  const std::string log = write_log(fs::temp_directory_path() /
-                                    ("vmass_can_" + std::to_string(::getpid()) + ".log"));
+  const std::string log =
+      write_log(fs::temp_directory_path() / ("vmass_can_" + std::to_string(::getpid()) + ".log"));
   std::string error;
   auto frames = CandumpFrameSource::open(log, &error);
   ASSERT_TRUE(frames) << error;

@@ -80,9 +80,7 @@ class DaemonTest : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
-  static void sleep_s(double s) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(s));
-  }
+  static void sleep_s(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
 
   fs::path dir_;
   std::string csv_;
@@ -293,20 +291,21 @@ TEST_F(DaemonTest, CrossProcessMulticastMeetsTheRateInAPrivateNetns) {
   }
   const std::string config = write_config("lcm:\n  url: \"udpm://239.255.76.67:7667?ttl=0\"\n");
   const std::string script = path("netns.sh");
-  ASSERT_TRUE(test::write_text(
-      script,
-      "set -e\n"
-      "ip link set lo up\n"
-      "ip route add 224.0.0.0/4 dev lo\n" +
-          std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
-          " --no-restore > " + path("daemon.log") + " 2>&1 &\n"
-          "daemon=$!\n"
-          "sleep 1\n" VMASS_MONITOR_BIN " --config " + config + " --rates 6 > " +
-          path("rates.txt") + "\n"
-          "monitor=$?\n"
-          "kill -TERM $daemon\n"
-          "wait $daemon\n"
-          "exit $monitor\n"));
+  ASSERT_TRUE(test::write_text(script,
+                               "set -e\n"
+                               "ip link set lo up\n"
+                               "ip route add 224.0.0.0/4 dev lo\n" +
+                                   std::string(VMASSD_BIN) + " --config " + config + " --samples " +
+                                   csv_ + " --no-restore > " + path("daemon.log") +
+                                   " 2>&1 &\n"
+                                   "daemon=$!\n"
+                                   "sleep 1\n" VMASS_MONITOR_BIN " --config " +
+                                   config + " --rates 6 > " + path("rates.txt") +
+                                   "\n"
+                                   "monitor=$?\n"
+                                   "kill -TERM $daemon\n"
+                                   "wait $daemon\n"
+                                   "exit $monitor\n"));
   ASSERT_EQ(run("unshare -n sh " + script), 0) << read("rates.txt") << read("daemon.log");
   const std::string rates = read("rates.txt");
   double estimate_hz = 0.0, status_hz = 0.0;

@@ -146,8 +146,8 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(rx.pairs[1].verdict_name, std::string(verdict_name(PairVerdict::kSteering)));
   EXPECT_EQ(rx.pairs[1].predicted_y_n, 0.0);  // NaN replaced
   for (const vmass::pair_t& p : rx.pairs) {
-    for (double v : {p.y_n, p.delta_accel_mps2, p.weight, p.predicted_y_n,
-                     p.innovation_variance_n2, p.test_ratio}) {
+    for (double v : {p.y_n, p.delta_accel_mps2, p.weight, p.predicted_y_n, p.innovation_variance_n2,
+                     p.test_ratio}) {
       EXPECT_TRUE(std::isfinite(v));
     }
   }
@@ -212,8 +212,11 @@ TEST(LcmTypes, PythonDecodesWhatCppEncodes) {
   std::fwrite(buf.data(), 1, buf.size(), f);
   std::fclose(f);
   const std::string script =
-      "import sys; sys.path.insert(0, '" VMASS_LCMTYPES_PYTHON_DIR "'); import vmass; "
-      "m = vmass.mass_estimate_t.decode(open('" + bin + "', 'rb').read()); "
+      "import sys; sys.path.insert(0, '" VMASS_LCMTYPES_PYTHON_DIR
+      "'); import vmass; "
+      "m = vmass.mass_estimate_t.decode(open('" +
+      bin +
+      "', 'rb').read()); "
       "print(repr(m.mass_kg), m.tick, m.status_name, m.reason_name, m.estimator, "
       "m.longitudinal_accepted, repr(m.mass_ci_high_kg))";
   ASSERT_EQ(std::system(("python3 -c \"" + script + "\" > " + out).c_str()), 0);
@@ -233,8 +236,8 @@ TEST(LcmTypes, PythonDecodesWhatCppEncodes) {
 class NotifySocket {
  public:
   NotifySocket() {
-    path_ = "/tmp/vmass_notify_" + std::to_string(::getpid()) + "_" +
-            std::to_string(counter_++) + ".sock";
+    path_ = "/tmp/vmass_notify_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++) +
+            ".sock";
     fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     sockaddr_un addr{};
     addr.sun_family = AF_UNIX;
@@ -329,9 +332,10 @@ TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
   {
     FILE* f = std::fopen(csv.c_str(), "w");
     ASSERT_NE(f, nullptr);
-    std::fprintf(f, "time_s,wheel_torque_nm,brake_pressure_pa,accel_x_mps2,accel_y_mps2,"
-                    "yaw_rate_radps,speed_mps,steering_wheel_angle_rad,"
-                    "rear_right_deflection_m,gear\n");
+    std::fprintf(f,
+                 "time_s,wheel_torque_nm,brake_pressure_pa,accel_x_mps2,accel_y_mps2,"
+                 "yaw_rate_radps,speed_mps,steering_wheel_angle_rad,"
+                 "rear_right_deflection_m,gear\n");
     for (int i = 0; i <= 3000; ++i) {
       std::fprintf(f, "%.2f,0,0,0,0,0,0,0,0.01,1\n", i * 0.01);
     }
@@ -341,19 +345,22 @@ TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
   {
     FILE* f = std::fopen(config.c_str(), "w");
     ASSERT_NE(f, nullptr);
-    std::fprintf(f, "vehicle:\n  empty_mass_kg: 1500\n  wheelbase_m: 2.7\n"
-                    "  cg_to_front_axle_m: 1.2\n  wheel_radius_m: 0.31\n"
-                    "  brake_gain_n_per_pa: 0.0033\n  steering_ratio: 15.5\n"
-                    "  cornering_stiffness_front_n_per_rad: 150000\n"
-                    "  cornering_stiffness_rear_n_per_rad: 170000\n"
-                    "suspension:\n  stiffness_n_per_m: 30000\n");
+    std::fprintf(f,
+                 "vehicle:\n  empty_mass_kg: 1500\n  wheelbase_m: 2.7\n"
+                 "  cg_to_front_axle_m: 1.2\n  wheel_radius_m: 0.31\n"
+                 "  brake_gain_n_per_pa: 0.0033\n  steering_ratio: 15.5\n"
+                 "  cornering_stiffness_front_n_per_rad: 150000\n"
+                 "  cornering_stiffness_rear_n_per_rad: 170000\n"
+                 "suspension:\n  stiffness_n_per_m: 30000\n");
     std::fclose(f);
   }
   // WATCHDOG_PID unset: sd_watchdog_enabled() accepts the watchdog for any process.
   const std::string command = "NOTIFY_SOCKET=" + sock.path() +
                               " WATCHDOG_USEC=400000 " VMASSD_BIN " --config " + config +
-                              " --samples " + csv + " --lcm-url memq:// --no-restore"
-                              " > " + dir + "/log.txt 2>&1 & echo $! > " + dir + "/pid";
+                              " --samples " + csv +
+                              " --lcm-url memq:// --no-restore"
+                              " > " +
+                              dir + "/log.txt 2>&1 & echo $! > " + dir + "/pid";
   ASSERT_EQ(std::system(command.c_str()), 0);
 
   const std::vector<std::string> start = sock.until("READY=1");
@@ -377,7 +384,8 @@ TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
   EXPECT_NE(stop.back().find("STOPPING=1"), std::string::npos);
   // Exit status 0 (wait for the process to go, then read it from the log's last line).
   ASSERT_EQ(std::system(("for i in $(seq 50); do kill -0 $(cat " + dir +
-                         "/pid) 2>/dev/null || exit 0; sleep 0.1; done; exit 1").c_str()),
+                         "/pid) 2>/dev/null || exit 0; sleep 0.1; done; exit 1")
+                            .c_str()),
             0)
       << "vmassd did not stop within 5 s of SIGTERM";
   EXPECT_EQ(std::system(("grep -q 'stopped:' " + dir + "/log.txt").c_str()), 0);

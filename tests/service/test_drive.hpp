@@ -18,13 +18,13 @@ namespace vmass::test {
 
 struct DriveSpec {
   double mass_kg = 1800.0;
-  double duration_s = 60.0;     ///< total, including both standstills
-  double standstill_s = 5.0;    ///< at the start and at the end
+  double duration_s = 60.0;   ///< total, including both standstills
+  double standstill_s = 5.0;  ///< at the start and at the end
   double tick_rate_hz = 100.0;
   unsigned seed = 7;
   // Must match test_config_yaml():
-  double empty_mass_kg = 1500.0, wheelbase_m = 2.7, cg_to_front_axle_m = 1.2,
-         wheel_radius_m = 0.31, stiffness_n_per_m = 30000.0, gravity_mps2 = 9.80665;
+  double empty_mass_kg = 1500.0, wheelbase_m = 2.7, cg_to_front_axle_m = 1.2, wheel_radius_m = 0.31,
+         stiffness_n_per_m = 30000.0, gravity_mps2 = 9.80665;
 };
 
 inline double deflection_for_mass(const DriveSpec& d, double mass_kg) {
@@ -109,11 +109,14 @@ inline std::string test_config_yaml(const std::string& extra = "",
          "suspension:\n"
          "  stiffness_n_per_m: 30000.0\n"
          "estimator:\n"
-         "  type: " + type + "\n"
+         "  type: " +
+         type +
+         "\n"
          "  tick_rate_hz: 100.0\n"
          "  differencing_dt_s: 0.1\n"
          "  bayes:\n"
-         "    batch_size: 50\n" + extra;
+         "    batch_size: 50\n" +
+         extra;
 }
 
 inline bool write_text(const std::string& path, const std::string& text) {

@@ -97,14 +97,13 @@ class Monitor {
                     e.initial_mass_kg, static_cast<long long>(e.pairs_used),
                     static_cast<double>(e.utime) * 1e-6);
       out += line;
-      std::snprintf(line, sizeof line,
-                    "available longitudinal %5.1f %% (%lld pairs, %lld rejected)   "
-                    "lateral %5.1f %% (%lld pairs, %lld rejected)\n",
-                    100.0 * e.longitudinal_availability,
-                    static_cast<long long>(e.longitudinal_accepted),
-                    static_cast<long long>(e.longitudinal_rejected),
-                    100.0 * e.lateral_availability, static_cast<long long>(e.lateral_accepted),
-                    static_cast<long long>(e.lateral_rejected));
+      std::snprintf(
+          line, sizeof line,
+          "available longitudinal %5.1f %% (%lld pairs, %lld rejected)   "
+          "lateral %5.1f %% (%lld pairs, %lld rejected)\n",
+          100.0 * e.longitudinal_availability, static_cast<long long>(e.longitudinal_accepted),
+          static_cast<long long>(e.longitudinal_rejected), 100.0 * e.lateral_availability,
+          static_cast<long long>(e.lateral_accepted), static_cast<long long>(e.lateral_rejected));
       out += line;
     } else {
       out += "mass      (no estimate received)\n";
@@ -123,16 +122,14 @@ class Monitor {
                     static_cast<long long>(s.ticks_skipped), s.jitter_p50_us, s.jitter_p99_us,
                     s.jitter_max_us, static_cast<long long>(s.publish_queue_drops));
       out += line;
-      std::snprintf(line, sizeof line,
-                    "frames    %lld received, %lld decoded, %lld unknown, %lld malformed, "
-                    "%lld dropped, %lld bus errors, %lld reopens\n",
-                    static_cast<long long>(s.frames_received),
-                    static_cast<long long>(s.frames_decoded),
-                    static_cast<long long>(s.frames_unknown),
-                    static_cast<long long>(s.frames_malformed),
-                    static_cast<long long>(s.frames_dropped),
-                    static_cast<long long>(s.bus_errors),
-                    static_cast<long long>(s.source_reopens));
+      std::snprintf(
+          line, sizeof line,
+          "frames    %lld received, %lld decoded, %lld unknown, %lld malformed, "
+          "%lld dropped, %lld bus errors, %lld reopens\n",
+          static_cast<long long>(s.frames_received), static_cast<long long>(s.frames_decoded),
+          static_cast<long long>(s.frames_unknown), static_cast<long long>(s.frames_malformed),
+          static_cast<long long>(s.frames_dropped), static_cast<long long>(s.bus_errors),
+          static_cast<long long>(s.source_reopens));
       out += line;
       out += "inputs   ";
       for (int i = 0; i < s.num_inputs; ++i) {
@@ -186,11 +183,11 @@ int main(int argc, char** argv) {
   app.add_option("--estimate-channel", estimate_channel, "default VMASS_ESTIMATE");
   app.add_option("--status-channel", status_channel, "default VMASS_STATUS");
   auto* once_opt = app.add_flag("--once", once, "print one report and exit");
-  auto* count_opt = app.add_option("--count", count, "exit after N estimates")
-                        ->check(CLI::PositiveNumber);
-  auto* rates_opt = app.add_option("--rates", rates_s,
-                                   "listen this many seconds, print message rates, exit")
-                        ->check(CLI::PositiveNumber);
+  auto* count_opt =
+      app.add_option("--count", count, "exit after N estimates")->check(CLI::PositiveNumber);
+  auto* rates_opt =
+      app.add_option("--rates", rates_s, "listen this many seconds, print message rates, exit")
+          ->check(CLI::PositiveNumber);
   app.add_option("--timeout", timeout_s, "exit 1 when nothing arrives within this many seconds");
   app.add_flag("--plain", plain, "no ANSI redraw (default when stdout is not a terminal)");
   once_opt->excludes(count_opt)->excludes(rates_opt);
@@ -273,8 +270,8 @@ int main(int argc, char** argv) {
                 lcm_settings.estimate_channel.c_str(), e.count, e.rate_hz(), e.nonfinite_fields);
     std::printf("%s messages=%ld rate_hz=%.3f nonfinite_fields=%ld\n",
                 lcm_settings.status_channel.c_str(), s.count, s.rate_hz(), s.nonfinite_fields);
-    const bool ok = e.count > 0 && s.count > 0 && e.nonfinite_fields == 0 &&
-                    s.nonfinite_fields == 0;
+    const bool ok =
+        e.count > 0 && s.count > 0 && e.nonfinite_fields == 0 && s.nonfinite_fields == 0;
     return ok ? 0 : 1;
   }
   if (batch) std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);

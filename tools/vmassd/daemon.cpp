@@ -16,8 +16,8 @@
 #include <cstring>
 #include <thread>
 
-#include <lcm/lcm-cpp.hpp>
 #include <spdlog/spdlog.h>
+#include <lcm/lcm-cpp.hpp>
 
 #include "vmass/can/dbc.hpp"
 #include "vmass/service/can_input_source.hpp"
@@ -92,10 +92,10 @@ struct Shared {
   svc::SpscQueue<svc::TickRecord> queue;    ///< estimator -> publisher
   sem_t queue_sem;
   std::atomic<std::int64_t> queue_drops{0};
-  svc::SeqLock<svc::TickRecord> latest;          ///< estimator -> main, publisher (status)
-  svc::SeqLock<svc::TickTimingSummary> timing;   ///< estimator -> status
-  svc::SeqLock<SnapshotSlot> snapshot;           ///< estimator -> main (persistence)
-  std::atomic<std::int64_t> heartbeat{0};        ///< ticks run (watchdog evidence)
+  svc::SeqLock<svc::TickRecord> latest;         ///< estimator -> main, publisher (status)
+  svc::SeqLock<svc::TickTimingSummary> timing;  ///< estimator -> status
+  svc::SeqLock<SnapshotSlot> snapshot;          ///< estimator -> main (persistence)
+  std::atomic<std::int64_t> heartbeat{0};       ///< ticks run (watchdog evidence)
   std::atomic<std::int64_t> state_saves{0};
   std::atomic<bool> input_ended{false};
 };
@@ -106,10 +106,10 @@ struct Plan {
   bool max_speed = false;
   double speed = 1.0;
   double tick_rate_hz = 100.0;
-  TimeUs tick_us = 10'000;      ///< tick period in the input's clock (as TickResampler)
-  std::int64_t period_ns = 0;   ///< wall-clock period of the loop
-  TimeUs t0_us = 0;             ///< time of tick 0 (input clock)
-  std::int64_t mono0_ns = 0;    ///< CLOCK_MONOTONIC of tick 0
+  TimeUs tick_us = 10'000;     ///< tick period in the input's clock (as TickResampler)
+  std::int64_t period_ns = 0;  ///< wall-clock period of the loop
+  TimeUs t0_us = 0;            ///< time of tick 0 (input clock)
+  std::int64_t mono0_ns = 0;   ///< CLOCK_MONOTONIC of tick 0
   bool has_first_record = false;
   int snapshot_every_ticks = 10;
   svc::RealtimeSettings realtime;
@@ -122,8 +122,10 @@ void apply_realtime(const svc::RealtimeSettings& rt) {
     for (int cpu : rt.cpu_affinity) CPU_SET(static_cast<unsigned>(cpu), &set);
     const int err = pthread_setaffinity_np(pthread_self(), sizeof set, &set);
     if (err != 0) {
-      spdlog::warn("daemon.realtime.cpu_affinity: cannot pin the estimator thread ({}); running "
-                   "unpinned", std::strerror(err));
+      spdlog::warn(
+          "daemon.realtime.cpu_affinity: cannot pin the estimator thread ({}); running "
+          "unpinned",
+          std::strerror(err));
     }
   }
   if (rt.priority > 0) {
@@ -131,9 +133,10 @@ void apply_realtime(const svc::RealtimeSettings& rt) {
     param.sched_priority = rt.priority;
     const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
     if (err != 0) {
-      spdlog::warn("daemon.realtime.priority: SCHED_FIFO {} refused ({}); running with normal "
-                   "scheduling (grant LimitRTPRIO= or CPUSchedulingPolicy=fifo)",
-                   rt.priority, std::strerror(err));
+      spdlog::warn(
+          "daemon.realtime.priority: SCHED_FIFO {} refused ({}); running with normal "
+          "scheduling (grant LimitRTPRIO= or CPUSchedulingPolicy=fifo)",
+          rt.priority, std::strerror(err));
     }
   }
 }
@@ -150,9 +153,9 @@ void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) 
     // The first record is already fetched (its time is T_0). Pace records by log time.
     for (;;) {
       const std::int64_t due =
-          plan.mono0_ns + static_cast<std::int64_t>(
-                              static_cast<double>(source.record_time_us() - plan.t0_us) * 1000.0 /
-                              plan.speed);
+          plan.mono0_ns +
+          static_cast<std::int64_t>(static_cast<double>(source.record_time_us() - plan.t0_us) *
+                                    1000.0 / plan.speed);
       if (!sleep_until(due, shared.stop)) return;
       source.apply(&values);
       shared.table.write(values);
@@ -347,8 +350,8 @@ std::string summary_line(const svc::DaemonStatus& s) {
   if (s.has_tick && e.mass_known) {
     std::snprintf(buf, sizeof buf, "%s: %.0f kg [%.0f, %.0f] %s; %s %s; %lld ticks, %lld overruns",
                   std::string(svc::daemon_state_name(s.state)).c_str(), e.mass_kg, e.ci_low_kg,
-                  e.ci_high_kg, std::string(vmass::status_name(e.status)).c_str(),
-                  s.source.c_str(), s.detail.empty() ? "ok" : s.detail.c_str(),
+                  e.ci_high_kg, std::string(vmass::status_name(e.status)).c_str(), s.source.c_str(),
+                  s.detail.empty() ? "ok" : s.detail.c_str(),
                   static_cast<long long>(s.timing.ticks),
                   static_cast<long long>(s.timing.overruns));
   } else {
@@ -433,8 +436,10 @@ int run(const Options& options) {
   plan.snapshot_every_ticks = static_cast<int>(std::clamp(persist_ticks, 1.0, 100.0));
 
   if (settings.daemon.realtime.lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-    spdlog::warn("daemon.realtime.lock_memory: mlockall failed ({}); memory may be paged "
-                 "(grant LimitMEMLOCK=infinity)", std::strerror(errno));
+    spdlog::warn(
+        "daemon.realtime.lock_memory: mlockall failed ({}); memory may be paged "
+        "(grant LimitMEMLOCK=infinity)",
+        std::strerror(errno));
   }
 
   // ------------------------------------------------------------------ input
@@ -493,8 +498,9 @@ int run(const Options& options) {
       return 1;
     }
     // TODO(signal table): replace DecodeOnlyMapper by the can.inputs signal mapping.
-    spdlog::warn("CAN signal mapping (can.inputs) is not wired yet: frames are decoded and "
-                 "counted, every estimator input stays invalid");
+    spdlog::warn(
+        "CAN signal mapping (can.inputs) is not wired yet: frames are decoded and "
+        "counted, every estimator input stays invalid");
     source = std::make_unique<svc::CanInputSource>(
         std::move(frames), std::make_unique<svc::DecodeOnlyMapper>(*decoder));
   }
@@ -507,8 +513,8 @@ int run(const Options& options) {
   }
   svc::EstimatorLoop loop(params, source->timeouts());
 
-  std::string state_path = options.state_file.empty() ? settings.daemon.state_file
-                                                      : options.state_file;
+  std::string state_path =
+      options.state_file.empty() ? settings.daemon.state_file : options.state_file;
   if (state_path.empty()) {
     const char* dir = std::getenv("STATE_DIRECTORY");  // systemd StateDirectory=
     if (dir != nullptr && dir[0] != '\0') {
@@ -524,10 +530,11 @@ int run(const Options& options) {
     if (state.status == svc::StateLoadStatus::kLoaded) {
       restored = loop.pipeline().restore(state.state.snapshot);
       if (restored) {
-        spdlog::info("restored {} estimate {:.1f} kg from {} ({} pairs); a standstill will "
-                     "re-check the load", vmass::regressor_type_name(params.estimator.type),
-                     loop.pipeline().estimate().mass_kg, state_path,
-                     state.state.snapshot.pairs_used);
+        spdlog::info(
+            "restored {} estimate {:.1f} kg from {} ({} pairs); a standstill will "
+            "re-check the load",
+            vmass::regressor_type_name(params.estimator.type), loop.pipeline().estimate().mass_kg,
+            state_path, state.state.snapshot.pairs_used);
       } else {
         spdlog::warn("{}: saved state refused by the estimator; starting fresh", state_path);
       }
@@ -552,8 +559,7 @@ int run(const Options& options) {
   ctx.tick_rate_hz = plan.tick_rate_hz;
   ctx.start_mono_ns = start_mono;
   ctx.state_restored = restored;
-  svc::LcmPublisher publisher(lcm, settings.lcm,
-                              std::string(loop.pipeline().regressor().name()));
+  svc::LcmPublisher publisher(lcm, settings.lcm, std::string(loop.pipeline().regressor().name()));
 
   plan.mono0_ns = mono_ns() + 1'000'000;  // first tick 1 ms from now
   std::thread publisher_worker(publisher_thread, std::ref(publisher), std::ref(shared),
@@ -562,8 +568,8 @@ int run(const Options& options) {
                                std::ref(shared), std::cref(plan));
   std::thread receive_worker;
   if (!plan.max_speed) {
-    receive_worker = std::thread(receive_thread, std::ref(*source), std::ref(shared),
-                                 std::cref(plan));
+    receive_worker =
+        std::thread(receive_thread, std::ref(*source), std::ref(shared), std::cref(plan));
   }
 
   svc::SystemdNotifier notifier;
@@ -626,11 +632,12 @@ int run(const Options& options) {
   const bool saved = save_snapshot(state_path, shared.snapshot.read(), fingerprint, shared);
   const svc::DaemonStatus final_status = gather_status(ctx, shared, true);
   publisher.publish_status(final_status);
-  spdlog::info("stopped: {}{}; {} estimates published, {} queue drops, jitter p50/p99/max "
-               "{:.0f}/{:.0f}/{:.0f} us", summary_line(final_status),
-               saved ? ", state saved" : "", publisher.estimates_published(),
-               final_status.publish_queue_drops, final_status.timing.jitter_p50_us,
-               final_status.timing.jitter_p99_us, final_status.timing.jitter_max_us);
+  spdlog::info(
+      "stopped: {}{}; {} estimates published, {} queue drops, jitter p50/p99/max "
+      "{:.0f}/{:.0f}/{:.0f} us",
+      summary_line(final_status), saved ? ", state saved" : "", publisher.estimates_published(),
+      final_status.publish_queue_drops, final_status.timing.jitter_p50_us,
+      final_status.timing.jitter_p99_us, final_status.timing.jitter_max_us);
   return 0;
 }
 

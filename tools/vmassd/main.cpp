@@ -7,9 +7,9 @@
 // vmass.pair_t on VMASS_PAIRS when lcm.publish_pairs). Runs under systemd as Type=notify
 // (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
 // (--replay, --samples) stops the daemon at its end.
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include "daemon.hpp"
 

@@ -99,10 +99,10 @@ class SocketCanFrameSource final : public FrameSource {
 class FrameMapper {
  public:
   enum class Outcome : std::uint8_t {
-    kDecoded,   ///< a known message, decoded (whether or not it fed an input)
-    kUnknown,   ///< id not in the DBC
-    kMalformed, ///< shorter than the DBC says (rejected, never zero-filled), or failed checks
-    kIgnored,   ///< remote request or error frame
+    kDecoded,    ///< a known message, decoded (whether or not it fed an input)
+    kUnknown,    ///< id not in the DBC
+    kMalformed,  ///< shorter than the DBC says (rejected, never zero-filled), or failed checks
+    kIgnored,    ///< remote request or error frame
   };
   virtual ~FrameMapper() = default;
   /// Applies one frame (its time_us is the values' time) to *values. Allocates nothing.

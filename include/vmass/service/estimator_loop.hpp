@@ -24,7 +24,7 @@ struct TickRecord {
   Estimate estimate;
   std::array<PairEvent, kBlockCount> events{};
   bool estimate_changed = false;
-  InputMask inputs_valid = 0;             ///< validity of each input at this tick
+  InputMask inputs_valid = 0;            ///< validity of each input at this tick
   double input_age_s[kInputCount] = {};  ///< T - time of the input's last update; -1: never
 };
 

@@ -48,19 +48,19 @@ Sample sample_at(const InputValues& values, TimeUs tick_us, const InputTimeouts&
 
 /// Counters of a source since start; frames for CAN, rows for a samples CSV.
 struct SourceCounters {
-  std::atomic<std::int64_t> received{0};   ///< frames (rows) read
-  std::atomic<std::int64_t> decoded{0};    ///< frames of a known message decoded (good rows)
-  std::atomic<std::int64_t> unknown{0};    ///< frames of an id not in the DBC
-  std::atomic<std::int64_t> malformed{0};  ///< frames too short or of a bad size (bad rows)
-  std::atomic<std::int64_t> dropped{0};    ///< frames dropped by the kernel (SO_RXQ_OVFL)
+  std::atomic<std::int64_t> received{0};    ///< frames (rows) read
+  std::atomic<std::int64_t> decoded{0};     ///< frames of a known message decoded (good rows)
+  std::atomic<std::int64_t> unknown{0};     ///< frames of an id not in the DBC
+  std::atomic<std::int64_t> malformed{0};   ///< frames too short or of a bad size (bad rows)
+  std::atomic<std::int64_t> dropped{0};     ///< frames dropped by the kernel (SO_RXQ_OVFL)
   std::atomic<std::int64_t> bus_errors{0};  ///< CAN error frames
   std::atomic<std::int64_t> reopens{0};     ///< successful re-opens after the input was lost
 };
 
 enum class SourceState : std::uint8_t {
-  kOk = 0,     ///< delivering
-  kDown,       ///< interface down or gone; being waited for / re-opened
-  kEnded,      ///< a recording reached its end
+  kOk = 0,  ///< delivering
+  kDown,    ///< interface down or gone; being waited for / re-opened
+  kEnded,   ///< a recording reached its end
 };
 
 /// Trivially copyable health record (published through a SeqLock).

@@ -47,8 +47,8 @@ struct DaemonStatus {
   double tick_rate_hz = 0.0;
   TickRecord last;  ///< latest tick (time, estimate, input ages)
   bool has_tick = false;
-  std::int64_t frames_received = 0, frames_decoded = 0, frames_unknown = 0,
-               frames_malformed = 0, frames_dropped = 0, bus_errors = 0, source_reopens = 0;
+  std::int64_t frames_received = 0, frames_decoded = 0, frames_unknown = 0, frames_malformed = 0,
+               frames_dropped = 0, bus_errors = 0, source_reopens = 0;
   TickTimingSummary timing;
   std::int64_t publish_queue_drops = 0;
   std::int64_t state_saves = 0;

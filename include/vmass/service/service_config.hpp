@@ -14,7 +14,8 @@
 //     can_interface: can0           # SocketCAN interface when neither --can nor a replay is given
 //     state_file: ""                # "" = $STATE_DIRECTORY/vmassd.state under systemd, else none
 //     persist_interval_s: 30.0      # how often the state is saved while running (and at exit)
-//     input_timeout_s: 0.05         # samples input: a value older than this is stale
+//     input_timeout_s: 0            # samples input: a value older than this is stale;
+//                                   #   0 = 5 ticks (5 / estimator.tick_rate_hz, as vmass-replay)
 //     publish_queue: 1024           # estimator -> publisher ring capacity, records
 //     realtime:
 //       priority: 0                 # SCHED_FIFO priority of the estimator thread, 1..99; 0 = off
@@ -56,7 +57,7 @@ struct DaemonSettings {
   std::string can_interface = "can0";
   std::string state_file;
   double persist_interval_s = 30.0;
-  double input_timeout_s = 0.05;
+  double input_timeout_s = 0.0;  ///< 0: 5 ticks
   int publish_queue = 1024;
   RealtimeSettings realtime;
 

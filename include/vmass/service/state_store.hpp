@@ -27,7 +27,7 @@ namespace vmass::service {
 
 struct SavedState {
   PipelineSnapshot snapshot;
-  TimeUs saved_time_us = 0;      ///< time of the tick the snapshot was taken at (input clock)
+  TimeUs saved_time_us = 0;       ///< time of the tick the snapshot was taken at (input clock)
   std::uint64_t fingerprint = 0;  ///< state_fingerprint() of the parameters
 };
 
