@@ -78,6 +78,7 @@ StepResult Pipeline::step(const Sample& sample) {
     has_reference_ = true;
     reference_deflection_m_ = static_mass->deflection_m;
     reference_deflection_std_m_ = static_mass->deflection_std_m;
+    reference_grade_accel_mps2_ = static_mass->grade_accel_mps2;
     // The first standstill after driving on the empty-mass prior does not throw away what the
     // events taught; a load change always restarts (the old estimate is about another vehicle).
     const bool events_used = has_prior_ && regressor_->state().pairs_used > 0;
@@ -143,6 +144,7 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.has_reference = has_reference_;
   s.reference_deflection_m = reference_deflection_m_;
   s.reference_deflection_std_m = reference_deflection_std_m_;
+  s.reference_grade_accel_mps2 = reference_grade_accel_mps2_;
   s.blocks[0] = supervisor_.counters(Block::kLongitudinal);
   s.blocks[1] = supervisor_.counters(Block::kLateral);
   return s;
@@ -190,10 +192,12 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   supervisor_.restore_counters(Block::kLateral, s.blocks[1]);
   longitudinal_.reset();
   lateral_.reset();
-  static_init_.restore_reference(s.reference_deflection_m, s.reference_deflection_std_m);
+  static_init_.restore_reference(s.reference_deflection_m, s.reference_deflection_std_m,
+                                 s.reference_grade_accel_mps2);
   has_reference_ = true;
   reference_deflection_m_ = s.reference_deflection_m;
   reference_deflection_std_m_ = s.reference_deflection_std_m;
+  reference_grade_accel_mps2_ = s.reference_grade_accel_mps2;
   has_prior_ = true;
   prior_reason_ = StatusReason::kRestored;
   prior_ = prior;

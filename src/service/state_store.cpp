@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -91,6 +92,7 @@ std::string format_state(const SavedState& state) {
   put_int(&out, "has_reference", s.has_reference ? 1 : 0);
   put(&out, "reference_deflection_m", s.reference_deflection_m);
   put(&out, "reference_deflection_std_m", s.reference_deflection_std_m);
+  put(&out, "reference_grade_accel_mps2", s.reference_grade_accel_mps2);  // may be nan
   for (int b = 0; b < kBlockCount; ++b) {
     const std::string prefix = std::string(block_name(static_cast<Block>(b))) + "_";
     const BlockCounters& c = s.blocks[static_cast<std::size_t>(b)];
@@ -221,6 +223,15 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   if (!get_double("reference_deflection_m", &s.reference_deflection_m) ||
       !get_double("reference_deflection_std_m", &s.reference_deflection_std_m)) {
     return false;
+  }
+  // Optional (files from before the grade check): NaN = unknown grade.
+  s.reference_grade_accel_mps2 = std::numeric_limits<double>::quiet_NaN();
+  if (values.count("reference_grade_accel_mps2") != 0) {
+    const std::string& v = values["reference_grade_accel_mps2"];
+    if (v != "nan" && v != "-nan" &&
+        !get_double("reference_grade_accel_mps2", &s.reference_grade_accel_mps2)) {
+      return false;
+    }
   }
   for (int b = 0; b < kBlockCount; ++b) {
     const std::string prefix = std::string(block_name(static_cast<Block>(b))) + "_";

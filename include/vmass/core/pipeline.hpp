@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 
 #include "vmass/core/bayes_estimator.hpp"
@@ -94,6 +95,7 @@ struct PipelineSnapshot {
   bool has_reference = false;
   double reference_deflection_m = 0.0;
   double reference_deflection_std_m = 0.0;
+  double reference_grade_accel_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< NaN: unknown
   std::array<BlockCounters, kBlockCount> blocks{};
 };
 
@@ -137,6 +139,7 @@ class Pipeline {
   bool has_reference_ = false;
   double reference_deflection_m_ = 0.0;
   double reference_deflection_std_m_ = 0.0;
+  double reference_grade_accel_mps2_ = std::numeric_limits<double>::quiet_NaN();
   Estimate estimate_;
 };
 
