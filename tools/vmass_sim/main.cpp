@@ -3,8 +3,10 @@
 //   vmass-sim --list
 //   vmass-sim --scenario NAME [--seed N] [--noise none|eps1|eps2|eps3] [--ideal-sensors] --out DIR
 //
-// Writes DIR/samples.csv, DIR/truth.csv and DIR/config.yaml (docs/formats.md). The same
-// scenario, seed and noise give byte-identical files. Exit codes: 0 ok, 2 usage or I/O error.
+// Writes DIR/samples.csv, DIR/truth.csv, DIR/config.yaml (docs/formats.md), and the same drive
+// on CAN: DIR/drive.log (candump -l) with DIR/vehicle.dbc, which config.yaml's `can:` section
+// maps (vmass/sim/can_writer.hpp). The same scenario, seed and noise give byte-identical files.
+// Exit codes: 0 ok, 2 usage or I/O error.
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "vmass/sim/can_writer.hpp"
 #include "vmass/sim/config_writer.hpp"
 #include "vmass/sim/csv_writer.hpp"
 #include "vmass/sim/scenario.hpp"
@@ -38,7 +41,8 @@ std::string joined_names() {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "vmass-sim: simulate a vehicle scenario; writes samples.csv, truth.csv, config.yaml"};
+      "vmass-sim: simulate a vehicle scenario; writes samples.csv, truth.csv, config.yaml, "
+      "drive.log, vehicle.dbc"};
   bool list = false;
   std::string scenario_name;
   std::uint64_t seed = 1;
@@ -95,6 +99,7 @@ int main(int argc, char** argv) {
   if (auto m = vmass::sim::simulate(*scenario, options, &result); !m.empty()) return fail(m);
   if (auto m = vmass::sim::write_csv_files(result, out_dir); !m.empty()) return fail(m);
   if (auto m = vmass::sim::write_config_file(result, out_dir); !m.empty()) return fail(m);
+  if (auto m = vmass::sim::write_can_files(result, out_dir); !m.empty()) return fail(m);
   if (result.scenario == "static_ballast") {  // + ballast.csv, suspension_truth.yaml
     if (auto m = vmass::sim::write_ballast_files(result, out_dir); !m.empty()) return fail(m);
   }
@@ -103,6 +108,6 @@ int main(int argc, char** argv) {
             << vmass::sim::noise_set_name(result.noise) << ": " << result.samples.size()
             << " samples at " << result.tick_rate_hz << " Hz, mass " << result.truth.front().mass_kg
             << " -> " << result.truth.back().mass_kg << " kg; wrote " << out_dir
-            << "/{samples.csv,truth.csv,config.yaml}\n";
+            << "/{samples.csv,truth.csv,config.yaml,drive.log,vehicle.dbc}\n";
   return 0;
 }
