@@ -1,10 +1,20 @@
-// vmass-replay: drive the estimation pipeline offline over recorded samples, at the configured
-// tick rate, and report how it did.
+// vmass-replay: drive the estimation pipeline offline over recorded samples or a CAN log, at
+// the configured tick rate, and report how it did.
 //
-//   vmass-replay --config FILE --samples CSV [--truth CSV] [--estimator rls|bayes]
-//                [--out CSV] [--plot PNG] [--json]
+//   vmass-replay --config FILE (--samples CSV | --log LOG) [--truth CSV]
+//                [--estimator rls|bayes] [--out CSV] [--plot PNG] [--json]
+//
+// --samples: samples.csv rows through a TickResampler (zero-order hold, stale after 5 ticks).
+// --log: a candump -l log decoded with the config's `can:` section (DBC + signal mapping) into a
+// SignalTable; tick k is at t0 + k / tick_rate_hz in log time (t0: the first frame's time), and
+// its Sample is SignalTable::sample_at(tick time) after every frame stamped at or before it
+// (the daemon's log replay does the same). Corrupt log lines are reported and counted, never
+// fatal. Exit codes: 0 ok, 1 write or plot failure, 2 usage, config or input error.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -13,12 +23,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/core/pipeline.hpp"
 #include "vmass/replay/estimate_csv.hpp"
 #include "vmass/replay/replay_summary.hpp"
 #include "vmass/replay/samples_csv.hpp"
 #include "vmass/replay/tick_resampler.hpp"
+#include "vmass/signals/signal_table.hpp"
 
 namespace fs = std::filesystem;
 
@@ -41,22 +53,115 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
+// Feeds the samples CSV through the tick resampler. False (and a message) on a bad file.
+bool replay_samples(const std::string& path, const vmass::PipelineParams& params,
+                    const std::function<void(const vmass::Sample&)>& on_tick) {
+  vmass::SamplesCsvReader reader(path);
+  if (!reader.error().empty()) {
+    std::cerr << "vmass-replay: " << reader.error() << "\n";
+    return false;
+  }
+  // A held sample older than 5 ticks is stale (a gap in the recording).
+  vmass::TickResampler ticks(params.estimator.differencing.tick_rate_hz,
+                             5.0 / params.estimator.differencing.tick_rate_hz);
+  while (auto sample = reader.next()) ticks.push(*sample, on_tick);
+  for (const auto& w : reader.warnings()) std::cerr << "vmass-replay: warning: " << w << "\n";
+  if (reader.skipped_rows() > 0) {
+    std::cerr << "vmass-replay: skipped " << reader.skipped_rows() << " malformed rows\n";
+  }
+  return true;
+}
+
+// Decodes the candump log into a SignalTable and ticks in log time (see the header comment).
+bool replay_log(const std::string& path, const vmass::Config& config, double tick_rate_hz,
+                const std::function<void(const vmass::Sample&)>& on_tick) {
+  vmass::signals::CanInputsLoad can = vmass::signals::load_can_inputs(config);
+  if (!can.ok()) {
+    std::cerr << "vmass-replay: " << can.error << "\n";
+    return false;
+  }
+  for (const std::string& w : can.inputs->warnings) std::cerr << "vmass-replay: " << w << "\n";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    std::cerr << "vmass-replay: " << path << ": cannot open the log\n";
+    return false;
+  }
+  vmass::signals::SignalTable table(can.inputs->decoder, can.inputs->mapping);
+  vmass::can::CandumpReader reader(in, path);
+  constexpr std::uint64_t kReportedLines = 10;
+  reader.on_error([&](const vmass::can::CandumpError& e) {
+    if (reader.stats().corrupt <= kReportedLines) {
+      std::cerr << "vmass-replay: " << e.message << " (line skipped)\n";  // "path:line: ..."
+    }
+  });
+
+  const double tick_us = 1e6 / tick_rate_hz;
+  bool started = false;
+  vmass::TimeUs t0_us = 0;
+  vmass::TimeUs last_us = 0;
+  std::int64_t k = 0;
+  auto tick_time = [&](std::int64_t i) {
+    return t0_us + static_cast<vmass::TimeUs>(std::llround(static_cast<double>(i) * tick_us));
+  };
+  vmass::can::CandumpRecord record;
+  while (reader.next(&record)) {
+    const vmass::can::CanFrame& frame = record.frame;
+    if (!started) {
+      started = true;
+      t0_us = frame.time_us;
+    }
+    while (tick_time(k) < frame.time_us) on_tick(table.sample_at(tick_time(k++)));
+    table.on_frame(frame, frame.time_us);
+    last_us = std::max(last_us, frame.time_us);
+  }
+  if (started) {
+    while (tick_time(k) <= last_us) on_tick(table.sample_at(tick_time(k++)));
+  }
+
+  const vmass::can::CandumpStats& ls = reader.stats();
+  const vmass::signals::SignalTableCounters& c = table.counters();
+  std::cerr << "vmass-replay: " << path << ": " << ls.frames << " frames, " << ls.corrupt
+            << " corrupt lines; decoded " << c.decoded << ", unknown id " << c.unknown_id
+            << ", too short " << c.malformed << ", error frames " << c.error_frames << "\n";
+  std::string stale;
+  for (int i = 0; i < vmass::kInputCount; ++i) {
+    const auto& ic = c.inputs[static_cast<std::size_t>(i)];
+    if (ic.stale > 0 || ic.invalid_values > 0) {
+      stale += " " + std::string(vmass::input_name(static_cast<vmass::Input>(i))) + " (" +
+               std::to_string(ic.stale) + " stale, " + std::to_string(ic.invalid_values) +
+               " invalid)";
+    }
+  }
+  if (!stale.empty()) std::cerr << "vmass-replay: inputs:" << stale << "\n";
+  if (!started) std::cerr << "vmass-replay: " << path << ": no frames\n";
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"vmass-replay: run the mass estimator offline over recorded samples"};
-  std::string config_path, samples_path, truth_path, out_path, plot_path, estimator;
+  CLI::App app{"vmass-replay: run the mass estimator offline over recorded samples or a CAN log"};
+  std::string config_path, samples_path, log_path, truth_path, out_path, plot_path, estimator;
   bool json = false;
   app.add_option("--config", config_path, "vmass YAML config")->required();
-  app.add_option("--samples", samples_path, "samples CSV (docs/formats.md)")->required();
+  auto* samples_opt = app.add_option("--samples", samples_path, "samples CSV (docs/formats.md)");
+  auto* log_opt =
+      app.add_option("--log", log_path, "candump -l log, decoded with the config's can: section");
+  samples_opt->excludes(log_opt);
+  log_opt->excludes(samples_opt);
   app.add_option("--truth", truth_path,
-                 "truth CSV (time_s,mass_kg); default: truth.csv beside the samples, if any");
+                 "truth CSV (time_s,mass_kg); default: truth.csv beside the input, if any");
   app.add_option("--estimator", estimator, "override estimator.type")
       ->check(CLI::IsMember({"rls", "bayes"}));
   app.add_option("--out", out_path, "write the estimate at every tick as CSV");
   app.add_option("--plot", plot_path, "write a PNG plot (needs --out or uses a temporary CSV)");
   app.add_flag("--json", json, "print the summary as one JSON object instead of a table");
   CLI11_PARSE(app, argc, argv);
+  if (samples_path.empty() && log_path.empty()) {
+    std::cerr << "vmass-replay: give the input: --samples CSV or --log LOG\n";
+    return 2;
+  }
+  const std::string input_path = log_path.empty() ? samples_path : log_path;
 
   vmass::ConfigLoad loaded = vmass::load_config(config_path);
   if (!loaded.ok()) {
@@ -69,13 +174,8 @@ int main(int argc, char** argv) {
         estimator == "rls" ? vmass::RegressorType::kRls : vmass::RegressorType::kBayes;
   }
 
-  vmass::SamplesCsvReader reader(samples_path);
-  if (!reader.error().empty()) {
-    std::cerr << "vmass-replay: " << reader.error() << "\n";
-    return 2;
-  }
   if (truth_path.empty()) {
-    const fs::path beside = fs::path(samples_path).parent_path() / "truth.csv";
+    const fs::path beside = fs::path(input_path).parent_path() / "truth.csv";
     if (fs::exists(beside)) truth_path = beside.string();
   }
   std::optional<vmass::Truth> truth;
@@ -90,8 +190,8 @@ int main(int argc, char** argv) {
 
   std::string csv_path = out_path;
   if (csv_path.empty() && !plot_path.empty()) {
-    csv_path = (fs::temp_directory_path() / ("vmass-replay-" + std::to_string(::getpid()) +
-                                             ".csv")).string();
+    csv_path = (fs::temp_directory_path() / ("vmass-replay-" + std::to_string(::getpid()) + ".csv"))
+                   .string();
   }
   std::unique_ptr<vmass::EstimateCsvWriter> writer;
   if (!csv_path.empty()) {
@@ -104,19 +204,19 @@ int main(int argc, char** argv) {
 
   auto pipeline = std::make_unique<vmass::Pipeline>(params);
   vmass::ReplaySummary summary(truth);
-  // A held sample older than 5 ticks is stale (a gap in the recording).
-  vmass::TickResampler ticks(params.estimator.differencing.tick_rate_hz,
-                             5.0 / params.estimator.differencing.tick_rate_hz);
   auto on_tick = [&](const vmass::Sample& sample) {
     pipeline->step(sample);
     summary.add(pipeline->estimate());
     if (writer) writer->write(pipeline->estimate());
   };
-  while (auto sample = reader.next()) ticks.push(*sample, on_tick);
-
-  for (const auto& w : reader.warnings()) std::cerr << "vmass-replay: warning: " << w << "\n";
-  if (reader.skipped_rows() > 0) {
-    std::cerr << "vmass-replay: skipped " << reader.skipped_rows() << " malformed rows\n";
+  const bool read_ok = log_path.empty()
+                           ? replay_samples(samples_path, params, on_tick)
+                           : replay_log(log_path, *loaded.config,
+                                        params.estimator.differencing.tick_rate_hz, on_tick);
+  if (!read_ok) {
+    if (writer) writer->close();
+    if (out_path.empty() && !csv_path.empty()) fs::remove(csv_path);
+    return 2;
   }
   if (writer && !writer->close()) {
     std::cerr << "vmass-replay: " << csv_path << ": write failed\n";
@@ -127,8 +227,8 @@ int main(int argc, char** argv) {
 
   if (!plot_path.empty()) {
     std::string command = shell_quote(sibling_program("vmass-plot")) + " --estimates " +
-                          shell_quote(csv_path) + " --out " + shell_quote(plot_path) +
-                          " --title " + shell_quote("vmass-replay " + name + ": " + samples_path);
+                          shell_quote(csv_path) + " --out " + shell_quote(plot_path) + " --title " +
+                          shell_quote("vmass-replay " + name + ": " + input_path);
     if (!truth_path.empty()) command += " --truth " + shell_quote(truth_path);
     const int rc = std::system(command.c_str());
     if (out_path.empty()) fs::remove(csv_path);
