@@ -49,7 +49,10 @@ case "$case_name" in
     expect_error 2 "'12 mm' is not a number" --ballast s.csv $geometry ;;
   candump_log)
     printf '(1700000000.000000) can0 123#0011223344556677\n' >test.log
-    expect_error 2 "candump -l log" --ballast test.log $geometry ;;
+    expect_error 2 "is a candump -l log: give --config FILE" --ballast test.log $geometry
+    printf 'vehicle:\n  empty_mass_kg: 1500\n  wheelbase_m: 2.7\n  cg_to_front_axle_m: 1.2\n  wheel_radius_m: 0.31\n  brake_gain_n_per_pa: 0.0033\n  steering_ratio: 15.5\n  cornering_stiffness_front_n_per_rad: 150000\n  cornering_stiffness_rear_n_per_rad: 170000\nsuspension:\n  stiffness_n_per_m: 30000\n' >c.yaml
+    expect_error 2 "c.yaml: can: required section is missing" --ballast test.log --config c.yaml \
+      --masses 0:100:200 ;;
   series_needs_masses)
     printf 'time_s,rear_right_deflection_m\n0,0.012\n0.01,0.012\n' >t.csv
     expect_error 2 "give the ballast of each plateau with --masses" --ballast t.csv $geometry ;;
@@ -77,6 +80,20 @@ case "$case_name" in
       { echo "FAIL: bump stop not detected"; exit 1; }
     grep -q '"linear_range_kg": 400,' csv.json || { echo "FAIL: linear range"; exit 1; }
     echo "ok: static_ballast calibrated from ballast.csv and from samples.csv" ;;
+  sim_log)
+    # The static test as the demo car's CAN log: the same curve as from its samples.csv.
+    "$sim" --scenario static_ballast --seed 4 --out sb >/dev/null || exit 1
+    "$tool" --ballast sb/drive.log --masses 0:100:800 --config sb/config.yaml --json \
+      >log.json 2>log.err || { echo "FAIL: exit $?"; cat log.err; exit 1; }
+    grep -q '"detected": true' log.json || { echo "FAIL: bump stop not detected"; exit 1; }
+    grep -q '"linear_range_kg": 400,' log.json || { echo "FAIL: linear range"; exit 1; }
+    c=$(sed -n 's/^{"stiffness_n_per_m": *\([0-9.]*\),.*/\1/p' log.json)
+    awk -v c="$c" 'BEGIN { exit !(c > 29700 && c < 30300) }' ||
+      { echo "FAIL: stiffness '$c' not within 1 % of the simulated 30000 N/m"; exit 1; }
+    "$tool" --ballast sb/drive.log --masses 0:100:800 --config sb/config.yaml >log.txt ||
+      exit 1
+    grep -q "note: log: .* deflection points" log.txt || { echo "FAIL: no log note"; exit 1; }
+    echo "ok: static_ballast calibrated from drive.log: c = $c N/m" ;;
   *)
     echo "unknown case $case_name"; exit 2 ;;
 esac

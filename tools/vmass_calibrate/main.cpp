@@ -6,10 +6,14 @@
 //                   [--plot PNG] [--json] [geometry flags] [fit and plateau flags]
 //
 // --ballast takes a steps CSV (added_mass_<unit>, rear_right_deflection_<unit>; one row per
-// sample or step) or a time series (time_s, rear_right_deflection_<unit>[, speed_mps], e.g. a
-// vmass samples.csv) whose standstill plateaus are found and paired with --masses. A candump
-// log is recognised and refused with an explanation: the CAN signal mapping it needs is not
-// built yet. Exit codes: 0 ok, 1 fit not usable or plot failed, 2 usage or data error.
+// sample or step), a time series (time_s, rear_right_deflection_<unit>[, speed_mps], e.g. a
+// vmass samples.csv), or a candump -l log of the test (recognised by its first line), decoded
+// with the --config file's `can:` section: the SignalTable is ticked at 100 Hz in log time
+// (vmass/signals/log_replay.hpp) and every tick with a new, valid rear_right_deflection frame
+// gives one point (time of that frame, deflection, speed when valid); held values are not
+// repeated, so the plateau detector's noise estimate sees the sensor's own sample rate. The
+// series' standstill plateaus are found and paired with --masses. Exit codes: 0 ok, 1 fit not
+// usable or plot failed, 2 usage or data error.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -29,6 +33,8 @@
 #include "vmass/calibrate/plateau_detector.hpp"
 #include "vmass/calibrate/suspension_fit.hpp"
 #include "vmass/config/config.hpp"
+#include "vmass/signals/log_replay.hpp"
+#include "vmass/signals/signal_table.hpp"
 
 namespace fs = std::filesystem;
 
@@ -71,6 +77,60 @@ bool looks_like_candump(const std::string& path) {
   return false;
 }
 
+// The deflection series of a candump log (see the header comment). "" or a message.
+std::string read_log_series(const std::string& path, const vmass::Config& config,
+                            std::vector<vmass::calibrate::DeflectionPoint>* series,
+                            std::string* note) {
+  vmass::signals::CanInputsLoad can = vmass::signals::load_can_inputs(config);
+  if (!can.ok()) return can.error;
+  if (!can.inputs->mapping.find(vmass::Input::kRearRightDeflection)) {
+    return config.file + ": can.inputs.rear_right_deflection: required to calibrate from a log";
+  }
+  for (const std::string& w : can.inputs->warnings) std::cerr << "vmass-calibrate: " << w << "\n";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return path + ": cannot open the log";
+  vmass::signals::SignalTable table(can.inputs->decoder, can.inputs->mapping);
+  vmass::can::CandumpReader reader(in, path);
+  reader.on_error([&](const vmass::can::CandumpError& e) {
+    if (reader.stats().corrupt <= 10) std::cerr << "vmass-calibrate: " << e.message << "\n";
+  });
+  constexpr double kTickRateHz = 100.0;
+  vmass::TimeUs last_update_us = -1;
+  vmass::TimeUs t0_us = 0;
+  bool have_t0 = false;
+  const auto replayed =
+      vmass::signals::replay_candump(reader, table, kTickRateHz, [&](const vmass::Sample& s) {
+        if (!have_t0) {
+          have_t0 = true;
+          t0_us = s.time_us;
+        }
+        if (!s.has(vmass::Input::kRearRightDeflection)) return;
+        const vmass::TimeUs t_us = table.input_state(vmass::Input::kRearRightDeflection).time_us;
+        if (t_us == last_update_us) return;  // held, not a new measurement
+        last_update_us = t_us;
+        vmass::calibrate::DeflectionPoint p;
+        p.time_s = static_cast<double>(t_us - t0_us) * 1e-6;
+        p.deflection_m = s.rear_right_deflection_m;
+        if (s.has(vmass::Input::kSpeed)) p.speed_mps = s.speed_mps;
+        series->push_back(p);
+      });
+  const auto& c = table.counters();
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "log: %llu frames (%llu corrupt lines, %llu unknown id, %llu too short), %lld "
+                "ticks, %zu deflection points",
+                static_cast<unsigned long long>(reader.stats().frames),
+                static_cast<unsigned long long>(reader.stats().corrupt),
+                static_cast<unsigned long long>(c.unknown_id),
+                static_cast<unsigned long long>(c.malformed),
+                static_cast<long long>(replayed.ticks), series->size());
+  *note = buf;
+  if (series->empty()) {
+    return path + ": no valid rear_right_deflection in the log (" + std::string(buf) + ")";
+  }
+  return "";
+}
+
 bool write_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
@@ -91,8 +151,9 @@ int main(int argc, char** argv) {
   double min_step_mm = plateau.min_step_m * 1e3;
 
   app.add_option("--ballast", ballast_path,
-                 "steps CSV (added_mass_kg, rear_right_deflection_mm) or time series CSV "
-                 "(time_s, rear_right_deflection_<unit>[, speed_mps])")
+                 "steps CSV (added_mass_kg, rear_right_deflection_mm), time series CSV "
+                 "(time_s, rear_right_deflection_<unit>[, speed_mps]) or candump -l log "
+                 "(with --config: its can: section)")
       ->required();
   app.add_option("--config", config_path, "vmass YAML config: vehicle geometry and empty mass");
   app.add_option("--masses", masses_text,
@@ -126,11 +187,13 @@ int main(int argc, char** argv) {
   // ---- Vehicle geometry (and empty mass) from the config and the flags.
   vmass::VehicleParams vehicle;
   bool have_empty_mass = false;
+  std::optional<vmass::Config> config;
   if (!config_path.empty()) {
-    const vmass::ConfigLoad loaded = vmass::load_config(config_path);
+    vmass::ConfigLoad loaded = vmass::load_config(config_path);
     if (!loaded.ok()) return fail(loaded.error);
     vehicle = loaded.config->pipeline.vehicle;
     have_empty_mass = true;
+    config = std::move(loaded.config);
   }
   if (wheelbase_m) vehicle.wheelbase_m = *wheelbase_m;
   if (cg_to_front_axle_m) vehicle.cg_to_front_axle_m = *cg_to_front_axle_m;
@@ -149,16 +212,25 @@ int main(int argc, char** argv) {
     return fail("vehicle.empty_mass_kg must be > 0");
   }
 
-  // ---- Ballast steps: a steps CSV, or plateaus of a time series.
+  // ---- Ballast steps: a steps CSV, or plateaus of a time series (CSV or candump log).
+  vmass::calibrate::BallastCsvRead read;
+  std::string log_note;
   if (looks_like_candump(ballast_path)) {
-    return fail(ballast_path +
-                ": this is a candump -l log. Reading the static test from CAN needs the config's "
-                "signal mapping (can.inputs -> rear_right_deflection), which the CAN layer does "
-                "not provide yet; decode the deflection to a CSV (time_s, "
-                "rear_right_deflection_m) and pass it with --masses");
+    if (!config) {
+      return fail(ballast_path +
+                  " is a candump -l log: give --config FILE with the can: section that maps "
+                  "rear_right_deflection (and speed) from the DBC");
+    }
+    read.csv = vmass::calibrate::BallastCsv{};
+    read.csv->kind = vmass::calibrate::BallastCsvKind::kSeries;
+    if (std::string m = read_log_series(ballast_path, *config, &read.csv->series, &log_note);
+        !m.empty()) {
+      return fail(m);
+    }
+  } else {
+    read = vmass::calibrate::read_ballast_csv(ballast_path);
+    if (!read.ok()) return fail(read.error);
   }
-  const vmass::calibrate::BallastCsvRead read = vmass::calibrate::read_ballast_csv(ballast_path);
-  if (!read.ok()) return fail(read.error);
   std::vector<vmass::calibrate::BallastStep> steps;
   std::vector<std::string> notes;
   if (read.csv->kind == vmass::calibrate::BallastCsvKind::kSteps) {
@@ -188,6 +260,7 @@ int main(int argc, char** argv) {
     std::snprintf(buf, sizeof buf, "%zu plateaus found (noise %.4f mm); %ld rows skipped",
                   detection.plateaus.size(), detection.noise_std_m * 1e3, read.csv->skipped_rows);
     notes.insert(notes.begin(), buf);
+    if (!log_note.empty()) notes.insert(notes.begin(), log_note);
   }
   if (std::string m = vmass::calibrate::check_steps(steps); !m.empty()) {
     return fail(ballast_path + ": " + m);

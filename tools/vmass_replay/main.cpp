@@ -30,6 +30,7 @@
 #include "vmass/replay/replay_summary.hpp"
 #include "vmass/replay/samples_csv.hpp"
 #include "vmass/replay/tick_resampler.hpp"
+#include "vmass/signals/log_replay.hpp"
 #include "vmass/signals/signal_table.hpp"
 
 namespace fs = std::filesystem;
@@ -95,28 +96,8 @@ bool replay_log(const std::string& path, const vmass::Config& config, double tic
     }
   });
 
-  const double tick_us = 1e6 / tick_rate_hz;
-  bool started = false;
-  vmass::TimeUs t0_us = 0;
-  vmass::TimeUs last_us = 0;
-  std::int64_t k = 0;
-  auto tick_time = [&](std::int64_t i) {
-    return t0_us + static_cast<vmass::TimeUs>(std::llround(static_cast<double>(i) * tick_us));
-  };
-  vmass::can::CandumpRecord record;
-  while (reader.next(&record)) {
-    const vmass::can::CanFrame& frame = record.frame;
-    if (!started) {
-      started = true;
-      t0_us = frame.time_us;
-    }
-    while (tick_time(k) < frame.time_us) on_tick(table.sample_at(tick_time(k++)));
-    table.on_frame(frame, frame.time_us);
-    last_us = std::max(last_us, frame.time_us);
-  }
-  if (started) {
-    while (tick_time(k) <= last_us) on_tick(table.sample_at(tick_time(k++)));
-  }
+  const vmass::signals::LogReplayStats replayed =
+      vmass::signals::replay_candump(reader, table, tick_rate_hz, on_tick);
 
   const vmass::can::CandumpStats& ls = reader.stats();
   const vmass::signals::SignalTableCounters& c = table.counters();
@@ -133,7 +114,7 @@ bool replay_log(const std::string& path, const vmass::Config& config, double tic
     }
   }
   if (!stale.empty()) std::cerr << "vmass-replay: inputs:" << stale << "\n";
-  if (!started) std::cerr << "vmass-replay: " << path << ": no frames\n";
+  if (!replayed.any_frame) std::cerr << "vmass-replay: " << path << ": no frames\n";
   return true;
 }
 
