@@ -76,36 +76,12 @@ FrameSource::Read SocketCanFrameSource::read(can::CanFrame* frame, int timeout_m
   return Read::kTimeout;
 }
 
-// ------------------------------------------------------------------------------ mapping
-
-DecodeOnlyMapper::DecodeOnlyMapper(const can::Decoder& decoder, double timeout_s)
-    : decoder_(decoder) {
-  for (TimeUs& t : timeouts_.timeout_us) t = from_seconds(timeout_s);
-}
-
-FrameMapper::Outcome DecodeOnlyMapper::apply(const can::CanFrame& frame, InputValues* values) {
-  int message = -1;
-  switch (decoder_.classify(frame, &message)) {
-    case can::DecodeStatus::kOk:
-      values->last_update_us = frame.time_us;
-      ++values->updates;
-      return Outcome::kDecoded;
-    case can::DecodeStatus::kUnknownId:
-      return Outcome::kUnknown;
-    case can::DecodeStatus::kTooShort:
-      return Outcome::kMalformed;
-    case can::DecodeStatus::kRemote:
-    case can::DecodeStatus::kErrorFrame:
-      return Outcome::kIgnored;
-  }
-  return Outcome::kIgnored;
-}
-
 // ------------------------------------------------------------------------------ source
 
 CanInputSource::CanInputSource(std::unique_ptr<FrameSource> frames,
-                               std::unique_ptr<FrameMapper> mapper)
-    : frames_(std::move(frames)), mapper_(std::move(mapper)) {}
+                               std::shared_ptr<const can::Decoder> decoder,
+                               const signals::SignalMapping& mapping)
+    : frames_(std::move(frames)), table_(std::move(decoder), mapping) {}
 
 void CanInputSource::sync_counters() {
   counters_.dropped.store(frames_->dropped(), std::memory_order_relaxed);
@@ -138,21 +114,40 @@ InputSource::Read CanInputSource::read(int timeout_ms) {
   return Read::kTimeout;
 }
 
-void CanInputSource::apply(InputValues* values) {
-  if (frame_.error()) counters_.bus_errors.fetch_add(1, std::memory_order_relaxed);
-  switch (mapper_->apply(frame_, values)) {
-    case FrameMapper::Outcome::kDecoded:
-      counters_.decoded.fetch_add(1, std::memory_order_relaxed);
-      break;
-    case FrameMapper::Outcome::kUnknown:
-      counters_.unknown.fetch_add(1, std::memory_order_relaxed);
-      break;
-    case FrameMapper::Outcome::kMalformed:
-      counters_.malformed.fetch_add(1, std::memory_order_relaxed);
-      break;
-    case FrameMapper::Outcome::kIgnored:
-      break;
+void CanInputSource::fetch(InputRecord* record) const {
+  record->time_us = frame_.time_us;
+  record->frame = frame_;
+}
+
+void CanInputSource::apply(const InputRecord& record) {
+  const signals::SignalTableCounters& c = table_.counters();
+  const std::uint64_t too_short_before = c.malformed;
+  table_.on_frame(record.frame, record.time_us);
+  counters_.decoded.store(static_cast<std::int64_t>(c.decoded), std::memory_order_relaxed);
+  counters_.unknown.store(static_cast<std::int64_t>(c.unknown_id), std::memory_order_relaxed);
+  counters_.bus_errors.store(static_cast<std::int64_t>(c.error_frames), std::memory_order_relaxed);
+  if (c.malformed != too_short_before) {
+    counters_.malformed.fetch_add(static_cast<std::int64_t>(c.malformed - too_short_before),
+                                  std::memory_order_relaxed);
   }
+}
+
+std::string CanInputSource::input_report() const {
+  std::string out;
+  const signals::SignalTableCounters& c = table_.counters();
+  for (int i = 0; i < kInputCount; ++i) {
+    const auto input = static_cast<Input>(i);
+    const signals::InputCounters& ic = c.inputs[static_cast<std::size_t>(i)];
+    if (!table_.input_state(input).mapped) continue;
+    if (ic.updates == 0) {
+      out += (out.empty() ? "" : "; ") + std::string(input_name(input)) + " never received";
+    } else if (ic.stale > 0 || ic.invalid_values > 0) {
+      out += (out.empty() ? "" : "; ") + std::string(input_name(input)) + " " +
+             std::to_string(ic.stale) + " stale, " + std::to_string(ic.invalid_values) +
+             " invalid values";
+    }
+  }
+  return out;
 }
 
 }  // namespace vmass::service

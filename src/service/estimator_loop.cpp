@@ -6,12 +6,10 @@ namespace vmass::service {
 
 static_assert(std::is_trivially_copyable<TickRecord>::value, "TickRecord goes through SpscQueue");
 
-EstimatorLoop::EstimatorLoop(const PipelineParams& params, const InputTimeouts& timeouts)
-    : pipeline_(params), timeouts_(timeouts) {}
+EstimatorLoop::EstimatorLoop(const PipelineParams& params) : pipeline_(params) {}
 
-const TickRecord& EstimatorLoop::tick(std::int64_t tick, TimeUs tick_us,
-                                      const InputValues& values) {
-  const Sample sample = sample_at(values, tick_us, timeouts_);
+const TickRecord& EstimatorLoop::tick(std::int64_t tick, TimeUs tick_us, InputSource& source) {
+  const Sample sample = source.sample_at(tick_us);
   const StepResult result = pipeline_.step(sample);
   record_.tick = tick;
   record_.estimate = pipeline_.estimate();
@@ -19,8 +17,8 @@ const TickRecord& EstimatorLoop::tick(std::int64_t tick, TimeUs tick_us,
   record_.estimate_changed = result.estimate_changed;
   record_.inputs_valid = sample.valid;
   for (int i = 0; i < kInputCount; ++i) {
-    const TimeUs t = values.input_time_us[i];
-    record_.input_age_s[i] = t < 0 ? -1.0 : to_seconds(tick_us - t);
+    const TimeUs age = source.input_age_us(static_cast<Input>(i), tick_us);
+    record_.input_age_s[i] = age < 0 ? -1.0 : to_seconds(age);
   }
   return record_;
 }

@@ -34,12 +34,27 @@ InputSource::Read SamplesCsvSource::read(int /*timeout_ms*/) {
   return Read::kRecord;
 }
 
-void SamplesCsvSource::apply(InputValues* values) {
-  values->latest = record_;
-  for (TimeUs& t : values->input_time_us) t = record_.time_us;
-  values->last_update_us = record_.time_us;
-  ++values->updates;
+void SamplesCsvSource::fetch(InputRecord* record) const {
+  record->time_us = record_.time_us;
+  record->sample = record_;
+}
+
+void SamplesCsvSource::apply(const InputRecord& record) {
+  values_.latest = record.sample;
+  values_.latest.time_us = record.time_us;
+  for (TimeUs& t : values_.input_time_us) t = record.time_us;
+  values_.last_update_us = record.time_us;
+  ++values_.updates;
   counters_.decoded.fetch_add(1, std::memory_order_relaxed);
+}
+
+Sample SamplesCsvSource::sample_at(TimeUs tick_us) {
+  return service::sample_at(values_, tick_us, timeouts_);
+}
+
+TimeUs SamplesCsvSource::input_age_us(Input input, TimeUs tick_us) const {
+  const TimeUs t = values_.input_time_us[static_cast<int>(input)];
+  return t < 0 ? -1 : tick_us - t;
 }
 
 }  // namespace vmass::service

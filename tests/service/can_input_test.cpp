@@ -1,6 +1,6 @@
-// The daemon's CAN input path with what the CAN layer has today: frames from a candump log or a
-// SocketCAN reader (through its fd seam), classified against a real DBC by DecodeOnlyMapper.
-// The signal mapping (can.inputs -> estimator inputs) is not wired yet: inputs stay invalid.
+// The daemon's CAN input path: frames from a candump log or a SocketCAN reader (through its fd
+// seam) decoded by the SignalTable of the config's can.inputs mapping; counters, values,
+// timeouts and ages checked against values computed here from the DBC's scale and unit.
 #include <linux/can.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
@@ -18,6 +20,7 @@
 #include "test_drive.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/service/can_input_source.hpp"
+#include "vmass/signals/signal_mapping.hpp"
 
 namespace vmass::service {
 namespace {
@@ -25,17 +28,36 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kDbc = std::string(VMASS_SOURCE_DIR) + "/tests/data/dbc/toyota_prius_2010_pt.dbc";
 
-can::Decoder prius() {
+std::shared_ptr<const can::Decoder> prius() {
   can::DbcParseResult r = can::load_dbc_file(kDbc);
   EXPECT_TRUE(r.ok());
   std::string error;
   std::optional<can::Decoder> d = can::Decoder::compile(std::move(r.database), &error);
   EXPECT_TRUE(d.has_value()) << error;
-  return std::move(*d);
+  return std::make_shared<const can::Decoder>(std::move(*d));
 }
 
-/// A log with 100 SPEED frames (0xB4, 8 bytes), 10 of an id not in the DBC, 5 SPEED frames
-/// too short, 1 error frame and 2 corrupt lines.
+// Prius SPEED (0xB4): SPEED is bits 47|16 Motorola (bytes 5-6 big-endian), 0.0062 mph per bit.
+constexpr double kMphToMps = 0.44704;
+constexpr const char* kSpeedMapping = "speed: {message: SPEED, signal: SPEED, timeout_s: 0.05}\n";
+
+signals::SignalMapping mapping(const can::Decoder& decoder, const std::string& yaml) {
+  signals::SignalMapping m;
+  const std::string error =
+      signals::parse_signal_mapping(YAML::Load(yaml), "test.yaml", decoder, "prius.dbc", &m);
+  EXPECT_EQ(error, "");
+  return m;
+}
+
+/// SPEED frame payload with raw speed value `raw`.
+std::string speed_payload(int raw) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "0000000000%02X%02X00", (raw >> 8) & 0xFF, raw & 0xFF);
+  return buf;
+}
+
+/// A log with 100 SPEED frames (0xB4, 8 bytes, raw speed 100 i at 10 i ms), 10 of an id not in
+/// the DBC, 5 SPEED frames too short, 1 error frame and 2 corrupt lines.
 std::string write_log(const std::string& path) {
   std::ofstream out(path);
   long t_us = 0;
@@ -45,7 +67,7 @@ std::string write_log(const std::string& path) {
     t_us += 10000;
     return std::string(buf);
   };
-  for (int i = 0; i < 100; ++i) out << stamp() << " can0 0B4#0000000000001000\n";
+  for (int i = 0; i < 100; ++i) out << stamp() << " can0 0B4#" << speed_payload(100 * i) << "\n";
   for (int i = 0; i < 10; ++i) out << stamp() << " can0 7FF#0102\n";
   for (int i = 0; i < 5; ++i) out << stamp() << " can0 0B4#0000\n";
   out << stamp() << " can0 20000004#0000000000000000\n";  // CAN_ERR_FLAG | CAN_ERR_CRTL
@@ -54,22 +76,26 @@ std::string write_log(const std::string& path) {
   return path;
 }
 
-TEST(CanInputSource, CandumpLogFramesAreClassifiedAndCounted) {
-  const can::Decoder decoder = prius();
+TEST(CanInputSource, CandumpLogFramesAreDecodedIntoTheSignalTable) {
+  const auto decoder = prius();
   const std::string log =
       write_log(fs::temp_directory_path() / ("vmass_can_" + std::to_string(::getpid()) + ".log"));
   std::string error;
   auto frames = CandumpFrameSource::open(log, &error);
   ASSERT_TRUE(frames) << error;
-  CanInputSource source(std::move(frames), std::make_unique<DecodeOnlyMapper>(decoder));
+  CanInputSource source(std::move(frames), decoder, mapping(*decoder, kSpeedMapping));
   EXPECT_TRUE(source.recorded());
-  InputValues values;
   int records = 0;
   TimeUs last = -1;
+  TimeUs last_speed_us = -1;
+  InputRecord record;
   while (source.read(0) == InputSource::Read::kRecord) {
     EXPECT_GT(source.record_time_us(), last);
     last = source.record_time_us();
-    source.apply(&values);
+    source.fetch(&record);
+    EXPECT_EQ(record.time_us, last);
+    source.apply(record);
+    if (record.frame.id == 0xB4 && record.frame.len == 8) last_speed_us = record.time_us;
     ++records;
   }
   EXPECT_EQ(records, 116);
@@ -80,37 +106,60 @@ TEST(CanInputSource, CandumpLogFramesAreClassifiedAndCounted) {
   EXPECT_EQ(c.malformed.load(), 7);  // 5 too short + 2 corrupt lines
   EXPECT_EQ(c.bus_errors.load(), 1);
   EXPECT_EQ(source.health().state, SourceState::kEnded);
-  EXPECT_EQ(values.latest.valid, 0u);  // nothing mapped to inputs yet
-  EXPECT_EQ(values.updates, 100u);
+  EXPECT_EQ(source.table().counters().mapped, 100u);
+
+  // The last good SPEED frame (raw 9900) at last_speed_us; its timeout is 50 ms (inclusive).
+  ASSERT_EQ(last_speed_us, 1700000000LL * 1000000 + 990000);
+  Sample s = source.sample_at(last_speed_us + 50'000);
+  EXPECT_EQ(s.time_us, last_speed_us + 50'000);
+  EXPECT_EQ(s.valid, input_bit(Input::kSpeed));  // nothing else is mapped
+  EXPECT_NEAR(s.speed_mps, 9900 * 0.0062 * kMphToMps, 1e-9);
+  EXPECT_EQ(source.input_age_us(Input::kSpeed, last_speed_us + 50'000), 50'000);
+  EXPECT_EQ(source.input_age_us(Input::kAccelX, last_speed_us), -1);  // never received
+  s = source.sample_at(last_speed_us + 50'001);
+  EXPECT_EQ(s.valid, 0u);
+  // The fresh -> stale transition is counted once and reported.
+  EXPECT_EQ(source.table().counters().inputs[static_cast<int>(Input::kSpeed)].stale, 1u);
+  EXPECT_NE(source.input_report().find("speed 1 stale"), std::string::npos)
+      << source.input_report();
   fs::remove(log);
 }
 
 TEST(CanInputSource, SocketCanReaderThroughItsFdSeam) {
-  const can::Decoder decoder = prius();
+  const auto decoder = prius();
   int fds[2];
   ASSERT_EQ(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, fds), 0);
   auto reader = std::make_unique<can::SocketCanReader>(fds[0], can::SocketCanReader::Opener{});
-  CanInputSource source(std::make_unique<SocketCanFrameSource>(std::move(reader), "seam0"),
-                        std::make_unique<DecodeOnlyMapper>(decoder));
+  CanInputSource source(std::make_unique<SocketCanFrameSource>(std::move(reader), "seam0"), decoder,
+                        mapping(*decoder, kSpeedMapping));
   EXPECT_FALSE(source.recorded());
   EXPECT_EQ(source.describe(), "socketcan:seam0");
   can_frame f{};
   f.can_id = 0xB4;
   f.can_dlc = 8;
+  f.data[5] = 0x12;  // raw 0x1234
+  f.data[6] = 0x34;
   ASSERT_EQ(::write(fds[1], &f, sizeof f), static_cast<ssize_t>(sizeof f));
   f.can_id = 0x7FF;
   ASSERT_EQ(::write(fds[1], &f, sizeof f), static_cast<ssize_t>(sizeof f));
   const char junk[5] = {1, 2, 3, 4, 5};  // a record of a bad size
   ASSERT_EQ(::write(fds[1], junk, sizeof junk), 5);
-  InputValues values;
+  InputRecord record;
   EXPECT_EQ(source.read(1000), InputSource::Read::kRecord);
-  source.apply(&values);
+  source.fetch(&record);
+  record.time_us = 5'000'000;  // the daemon re-stamps live frames into its tick clock
+  source.apply(record);
   EXPECT_EQ(source.read(1000), InputSource::Read::kRecord);
-  source.apply(&values);
+  source.fetch(&record);
+  source.apply(record);
   EXPECT_EQ(source.read(50), InputSource::Read::kTimeout);  // the junk is counted, not returned
   EXPECT_EQ(source.counters().decoded.load(), 1);
-  EXPECT_EQ(source.counters().unknown.load(), 1);
+  EXPECT_EQ(source.counters().unknown.load(), 1);  // 0x7FF is not in the DBC
   EXPECT_EQ(source.counters().malformed.load(), 1);
+  const Sample s = source.sample_at(5'010'000);
+  ASSERT_TRUE(s.has(Input::kSpeed));
+  EXPECT_NEAR(s.speed_mps, 0x1234 * 0.0062 * kMphToMps, 1e-9);
+  EXPECT_EQ(source.input_age_us(Input::kSpeed, 5'010'000), 10'000);
   ::close(fds[1]);
   EXPECT_EQ(source.read(1000), InputSource::Read::kEnd);
 }
@@ -122,7 +171,9 @@ TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {
   fs::create_directories(dir);
   const std::string log = write_log((dir / "drive.log").string());
   const std::string config = (dir / "vmassd.yaml").string();
-  ASSERT_TRUE(test::write_text(config, test::test_config_yaml("can:\n  dbc: " + kDbc + "\n")));
+  ASSERT_TRUE(test::write_text(
+      config,
+      test::test_config_yaml("can:\n  dbc: " + kDbc + "\n  inputs:\n    " + kSpeedMapping)));
   const std::string out = (dir / "out.lcm").string();
   const int status = std::system((std::string(VMASSD_BIN) + " --config " + config + " --replay " +
                                   log + " --speed max --no-restore --lcm-url 'file://" + out +
@@ -132,7 +183,7 @@ TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {
   ASSERT_EQ(WEXITSTATUS(status), 0);
   lcm::LogFile file(out, "r");
   vmass::status_t last;
-  long estimates = 0, degraded = 0;
+  long estimates = 0, degraded = 0, speed_invalid = 0;
   while (const lcm::LogEvent* ev = file.readNextEvent()) {
     if (ev->channel == "VMASS_STATUS") {
       ASSERT_EQ(last.decode(ev->data, 0, ev->datalen), ev->datalen);
@@ -141,6 +192,7 @@ TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {
       ASSERT_EQ(e.decode(ev->data, 0, ev->datalen), ev->datalen);
       ++estimates;
       degraded += e.status_name == "degraded";
+      speed_invalid += (e.invalid_inputs & input_bit(Input::kSpeed)) != 0;
     }
   }
   EXPECT_EQ(last.state_name, "stopping");
@@ -152,7 +204,18 @@ TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {
   EXPECT_EQ(last.bus_errors, 1);
   // Ticks span the log's time (116 frames, 10 ms apart) in log time.
   EXPECT_EQ(estimates, 116);
-  EXPECT_EQ(degraded, estimates);  // no input mapped: honestly degraded
+  EXPECT_EQ(degraded, estimates);  // only the speed is mapped: honestly degraded
+  // Speed frames at 0..990 ms, timeout 50 ms: invalid from tick 105 (1.05 s + 1 tick) on.
+  EXPECT_EQ(speed_invalid, 116 - 105);
+  // The last status: the speed's age at the last tick (1.15 s) from the table, the rest never.
+  ASSERT_EQ(last.num_inputs, kInputCount);
+  const int speed = static_cast<int>(Input::kSpeed);
+  EXPECT_NEAR(last.input_age_s[speed], 1.15 - 0.99, 1e-9);
+  EXPECT_FALSE(last.input_valid[speed]);
+  EXPECT_EQ(last.input_age_s[static_cast<int>(Input::kAccelX)], -1.0);
+  std::ifstream err_file(dir / "err.txt");
+  const std::string err((std::istreambuf_iterator<char>(err_file)), {});
+  EXPECT_NE(err.find("speed <- SPEED.SPEED"), std::string::npos) << err;  // the mapping, logged
   fs::remove_all(dir);
 }
 #endif

@@ -1,5 +1,6 @@
-// vmassd as a process: offline identity with replay, SIGKILL and resume, LCM across processes
-// in a private network namespace.
+// vmassd as a process: offline identity with replay (samples CSV, and the simulated drive's CAN
+// log through the signal table), SIGKILL and resume, LCM across processes in a private network
+// namespace.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,11 +21,14 @@
 #include <vmass/status_t.hpp>
 
 #include "test_drive.hpp"
+#include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/replay/estimate_csv.hpp"
 #include "vmass/replay/samples_csv.hpp"
 #include "vmass/replay/tick_resampler.hpp"
 #include "vmass/service/state_store.hpp"
+#include "vmass/signals/signal_mapping.hpp"
+#include "vmass/signals/signal_table.hpp"
 
 #ifdef VMASSD_BIN
 
@@ -131,6 +135,43 @@ Estimate from_lcm(const vmass::mass_estimate_t& m) {
   return e;
 }
 
+/// Row-for-row comparison of a vmass-replay --out CSV with the daemon's published estimates.
+void expect_csv_matches(const std::string& csv, const LoggedRun& daemon) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, EstimateCsvWriter::header());
+  std::size_t row = 0;
+  while (std::getline(in, line)) {
+    ASSERT_LT(row, daemon.estimates.size());
+    ASSERT_EQ(line, EstimateCsvWriter::row(from_lcm(daemon.estimates[row]))) << "row " << row;
+    ++row;
+  }
+  EXPECT_EQ(row, daemon.estimates.size());
+}
+
+/// The bitwise comparison of the daemon's estimates with an offline run.
+void expect_bit_identical(const LoggedRun& daemon, const std::vector<Estimate>& offline) {
+  ASSERT_EQ(daemon.estimates.size(), offline.size());
+  for (std::size_t i = 0; i < offline.size(); ++i) {
+    const vmass::mass_estimate_t& d = daemon.estimates[i];
+    const Estimate& o = offline[i];
+    ASSERT_EQ(d.utime, o.time_us) << i;
+    ASSERT_EQ(d.tick, static_cast<std::int64_t>(i));
+    ASSERT_EQ(d.mass_kg, o.mass_kg) << i;  // bitwise: same doubles
+    ASSERT_EQ(d.mass_ci_low_kg, o.ci_low_kg) << i;
+    ASSERT_EQ(d.mass_ci_high_kg, o.ci_high_kg) << i;
+    ASSERT_EQ(d.mass_std_kg, o.mass_std_kg) << i;
+    ASSERT_EQ(d.mu_n, o.mu_n) << i;
+    ASSERT_EQ(d.pairs_used, o.pairs_used) << i;
+    ASSERT_EQ(d.status, static_cast<int>(o.status)) << i;
+    ASSERT_EQ(d.reason, static_cast<int>(o.reason)) << i;
+    ASSERT_EQ(d.invalid_inputs, static_cast<std::int32_t>(o.invalid_inputs)) << i;
+    ASSERT_EQ(d.longitudinal_accepted, o.blocks[0].accepted) << i;
+    ASSERT_EQ(d.lateral_accepted, o.blocks[1].accepted) << i;
+  }
+}
+
 // `vmassd --samples CSV --speed max` ticks in log time and must give exactly what offline replay
 // gives: checked bit for bit against the replay loop (TickResampler + Pipeline, as vmass-replay
 // runs it) and, row for row, against the vmass-replay binary's CSV.
@@ -162,25 +203,8 @@ TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
         offline.push_back(pipeline.estimate());
       });
     }
-    ASSERT_EQ(daemon.estimates.size(), offline.size());
     ASSERT_GT(offline.back().pairs_used, 50);
-    for (std::size_t i = 0; i < offline.size(); ++i) {
-      const vmass::mass_estimate_t& d = daemon.estimates[i];
-      const Estimate& o = offline[i];
-      ASSERT_EQ(d.utime, o.time_us) << i;
-      ASSERT_EQ(d.tick, static_cast<std::int64_t>(i));
-      ASSERT_EQ(d.mass_kg, o.mass_kg) << i;  // bitwise: same doubles
-      ASSERT_EQ(d.mass_ci_low_kg, o.ci_low_kg) << i;
-      ASSERT_EQ(d.mass_ci_high_kg, o.ci_high_kg) << i;
-      ASSERT_EQ(d.mass_std_kg, o.mass_std_kg) << i;
-      ASSERT_EQ(d.mu_n, o.mu_n) << i;
-      ASSERT_EQ(d.pairs_used, o.pairs_used) << i;
-      ASSERT_EQ(d.status, static_cast<int>(o.status)) << i;
-      ASSERT_EQ(d.reason, static_cast<int>(o.reason)) << i;
-      ASSERT_EQ(d.invalid_inputs, static_cast<std::int32_t>(o.invalid_inputs)) << i;
-      ASSERT_EQ(d.longitudinal_accepted, o.blocks[0].accepted) << i;
-      ASSERT_EQ(d.lateral_accepted, o.blocks[1].accepted) << i;
-    }
+    expect_bit_identical(daemon, offline);
     // The final status closes the run (state stopping) and counts every row.
     ASSERT_FALSE(daemon.statuses.empty());
     const vmass::status_t& last = daemon.statuses.back();
@@ -194,20 +218,109 @@ TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
     ASSERT_EQ(run(std::string(VMASS_REPLAY_BIN) + " --config " + config + " --samples " + csv_ +
                   " --out " + replay_csv + " > /dev/null"),
               0);
-    std::ifstream in(replay_csv);
-    std::string line;
-    std::getline(in, line);
-    EXPECT_EQ(line, EstimateCsvWriter::header());
-    std::size_t row = 0;
-    while (std::getline(in, line)) {
-      ASSERT_LT(row, daemon.estimates.size());
-      ASSERT_EQ(line, EstimateCsvWriter::row(from_lcm(daemon.estimates[row]))) << "row " << row;
-      ++row;
-    }
-    EXPECT_EQ(row, daemon.estimates.size());
+    expect_csv_matches(replay_csv, daemon);
 #endif
   }
 }
+
+#ifdef VMASS_SIM_BIN
+// The simulated paper_exp2 drive on CAN (vmass-sim's drive.log, vehicle.dbc and the can:
+// mapping of its config.yaml): `vmassd --replay drive.log --speed max` decodes the frames through
+// the SignalTable and must give exactly what an offline SignalTable loop gives (bitwise, every
+// tick), and row for row what `vmass-replay --log` writes; and a good estimate.
+TEST_F(DaemonTest, MaxSpeedCanLogReplayIsBitIdenticalToVmassReplayLog) {
+  const std::string sim = path("sim");
+  ASSERT_EQ(run(std::string(VMASS_SIM_BIN) + " --scenario paper_exp2 --seed 3 --out " + sim +
+                " > /dev/null"),
+            0);
+  const std::string log = sim + "/drive.log";
+  std::ifstream sim_config_in(sim + "/config.yaml");
+  std::stringstream sim_config;
+  sim_config << sim_config_in.rdbuf();
+  for (const std::string type : {"bayes", "rls"}) {
+    SCOPED_TRACE(type);
+    // The simulator's config, with the estimator type set (the line "  type: bayes").
+    std::string text = sim_config.str();
+    const std::size_t at = text.find("  type: bayes");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 13, "  type: " + type);
+    const std::string config = sim + "/config_" + type + ".yaml";  // beside vehicle.dbc
+    ASSERT_TRUE(test::write_text(config, text));
+
+    const std::string lcm_log = path("out_" + type + ".lcm");
+    ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --replay " + log +
+                  " --speed max --no-restore --lcm-url 'file://" + lcm_log + "?mode=w' 2> " +
+                  path("vmassd.log")),
+              0)
+        << read("vmassd.log");
+    const LoggedRun daemon = read_lcm_log(lcm_log);
+
+    // Offline: candump reader -> SignalTable -> ticks at T_0 + k / rate after every frame
+    // stamped at or before them -> Pipeline (docs: vmass-replay --log).
+    ConfigLoad c = load_config(config);
+    ASSERT_TRUE(c.ok()) << c.error;
+    signals::CanInputsLoad can = signals::load_can_inputs(*c.config);
+    ASSERT_TRUE(can.ok()) << can.error;
+    signals::SignalTable table(can.inputs->decoder, can.inputs->mapping);
+    Pipeline pipeline(c.config->pipeline);
+    std::vector<Estimate> offline;
+    std::ifstream in(log);
+    can::CandumpReader reader(in, log);
+    can::CandumpRecord record;
+    const double rate_hz = c.config->pipeline.estimator.differencing.tick_rate_hz;
+    TimeUs t0 = 0, last = 0;
+    std::int64_t k = 0, frames = 0;
+    auto tick_time = [&](std::int64_t i) {
+      return t0 + static_cast<TimeUs>(std::llround(static_cast<double>(i) * 1e6 / rate_hz));
+    };
+    TimeUs ages_us[kInputCount] = {};  // at the latest tick
+    auto tick = [&] {
+      const TimeUs t = tick_time(k++);
+      pipeline.step(table.sample_at(t));
+      offline.push_back(pipeline.estimate());
+      for (int i = 0; i < kInputCount; ++i) ages_us[i] = table.age_us(static_cast<Input>(i), t);
+    };
+    while (reader.next(&record)) {
+      if (frames++ == 0) t0 = record.frame.time_us;
+      while (tick_time(k) < record.frame.time_us) tick();
+      table.on_frame(record.frame, record.frame.time_us);
+      last = std::max(last, record.frame.time_us);
+    }
+    while (tick_time(k) <= last) tick();
+    ASSERT_GT(offline.size(), 19'000u);  // 200 s at 100 Hz
+    ASSERT_GT(offline.back().pairs_used, 500);
+    expect_bit_identical(daemon, offline);
+
+    // Counters and per-input state in the final status come from the table.
+    ASSERT_FALSE(daemon.statuses.empty());
+    const vmass::status_t& st = daemon.statuses.back();
+    EXPECT_EQ(st.state_name, "stopping");
+    EXPECT_EQ(st.ticks, static_cast<std::int64_t>(offline.size()));
+    EXPECT_EQ(st.frames_received, frames);
+    EXPECT_EQ(st.frames_decoded, static_cast<std::int64_t>(table.counters().decoded));
+    EXPECT_EQ(st.frames_unknown, 0);
+    EXPECT_EQ(st.frames_malformed, 0);
+    EXPECT_EQ(st.publish_queue_drops, 0);
+    ASSERT_EQ(st.num_inputs, kInputCount);
+    for (int i = 0; i < kInputCount; ++i) {
+      const auto input = static_cast<Input>(i);
+      EXPECT_EQ(st.input_age_s[i], to_seconds(ages_us[i])) << input_name(input);
+      EXPECT_TRUE(st.input_valid[i]) << input_name(input);  // every input mapped and fresh
+    }
+
+    // A good estimate of the simulated 1659 kg car (paper Table V: errors of a few %).
+    EXPECT_NEAR(offline.back().mass_kg, 1659.0, 0.03 * 1659.0);
+
+#ifdef VMASS_REPLAY_BIN
+    const std::string replay_csv = path("replay_" + type + ".csv");
+    ASSERT_EQ(run(std::string(VMASS_REPLAY_BIN) + " --config " + config + " --log " + log +
+                  " --out " + replay_csv + " > /dev/null 2>&1"),
+              0);
+    expect_csv_matches(replay_csv, daemon);
+#endif
+  }
+}
+#endif
 
 // SIGKILL in the middle of a drive, then a restart: the state saved before the kill is intact
 // (atomic writes) and the new run starts from it instead of from the static prior.

@@ -19,7 +19,6 @@
 #include <spdlog/spdlog.h>
 #include <lcm/lcm-cpp.hpp>
 
-#include "vmass/can/dbc.hpp"
 #include "vmass/service/can_input_source.hpp"
 #include "vmass/service/estimator_loop.hpp"
 #include "vmass/service/lcm_publisher.hpp"
@@ -29,6 +28,7 @@
 #include "vmass/service/state_store.hpp"
 #include "vmass/service/systemd_notifier.hpp"
 #include "vmass/service/tick_stats.hpp"
+#include "vmass/signals/signal_mapping.hpp"
 
 namespace vmassd {
 namespace {
@@ -38,6 +38,9 @@ namespace svc = vmass::service;
 
 constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::int64_t kPollNs = 100'000'000;  // longest uninterrupted wait: 100 ms
+// receive -> estimator ring, records (~100 B each): 4096 frames are ~1 s of a busy 500 kbit/s
+// bus after the kernel's DBC-id filter, many ticks of slack for the estimator thread.
+constexpr std::size_t kInputQueueRecords = 4096;
 
 std::int64_t mono_ns() {
   timespec ts{};
@@ -80,16 +83,17 @@ struct SnapshotSlot {
 
 /// Everything the threads share. Allocated once at start-up.
 struct Shared {
-  explicit Shared(std::size_t queue_capacity) : queue(queue_capacity) {
+  explicit Shared(std::size_t queue_capacity) : inputs(kInputQueueRecords), queue(queue_capacity) {
     sem_init(&queue_sem, 0, 0);
   }
   ~Shared() { sem_destroy(&queue_sem); }
 
-  std::atomic<bool> stop{false};            ///< main -> receive, estimator
-  std::atomic<bool> stop_publisher{false};  ///< main -> publisher (after the estimator joined)
-  std::atomic<bool> estimator_done{false};  ///< a recording was played to its end
-  svc::SeqLock<svc::InputValues> table;     ///< receive -> estimator
-  svc::SpscQueue<svc::TickRecord> queue;    ///< estimator -> publisher
+  std::atomic<bool> stop{false};             ///< main -> receive, estimator
+  std::atomic<bool> stop_publisher{false};   ///< main -> publisher (after the estimator joined)
+  std::atomic<bool> estimator_done{false};   ///< a recording was played to its end
+  svc::SpscQueue<svc::InputRecord> inputs;   ///< receive -> estimator (frames, rows)
+  std::atomic<std::int64_t> input_drops{0};  ///< live records the full input ring refused
+  svc::SpscQueue<svc::TickRecord> queue;     ///< estimator -> publisher
   sem_t queue_sem;
   std::atomic<std::int64_t> queue_drops{0};
   svc::SeqLock<svc::TickRecord> latest;         ///< estimator -> main, publisher (status)
@@ -107,12 +111,23 @@ struct Plan {
   double speed = 1.0;
   double tick_rate_hz = 100.0;
   TimeUs tick_us = 10'000;     ///< tick period in the input's clock (as TickResampler)
+  bool rounded_grid = false;   ///< T_k = T_0 + round(k * 1e6 / rate) (as vmass-replay --log)
   std::int64_t period_ns = 0;  ///< wall-clock period of the loop
   TimeUs t0_us = 0;            ///< time of tick 0 (input clock)
   std::int64_t mono0_ns = 0;   ///< CLOCK_MONOTONIC of tick 0
   bool has_first_record = false;
   int snapshot_every_ticks = 10;
   svc::RealtimeSettings realtime;
+
+  /// T_k in the input clock.
+  TimeUs tick_time(std::int64_t k) const {
+    if (rounded_grid) {
+      return t0_us + static_cast<TimeUs>(std::llround(static_cast<double>(k) * 1e6 / tick_rate_hz));
+    }
+    return t0_us + k * tick_us;
+  }
+  /// The tick clock now: T_0 + CLOCK_MONOTONIC since tick 0 (live input).
+  TimeUs tick_clock_now_us() const { return t0_us + (mono_ns() - mono0_ns) / 1000; }
 };
 
 void apply_realtime(const svc::RealtimeSettings& rt) {
@@ -143,11 +158,35 @@ void apply_realtime(const svc::RealtimeSettings& rt) {
 
 // ----------------------------------------------------------------------------- receive thread
 
+/// Hands a record to the estimator thread. A recording waits for room (back-pressure: nothing of
+/// a log is lost); a live bus never waits: the record is dropped and counted.
+void push_input(const svc::InputRecord& record, Shared& shared, bool block) {
+  while (!shared.inputs.push(record)) {
+    if (!block) {
+      shared.input_drops.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    if (shared.stop.load(std::memory_order_relaxed)) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+/// A live frame's time in the tick clock: when it was read, on the tick clock, less how long it
+/// waited in the kernel (CLOCK_REALTIME now minus its kernel stamp). A wait outside [0, 1 s]
+/// means the wall clock was stepped (or the frame has no stamp): taken as 0. So the inputs'
+/// ages and timeouts never depend on CLOCK_REALTIME steps, which are common on a vehicle PC
+/// that sets its clock after boot (GNSS, NTP).
+TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan) {
+  const TimeUs read_at = plan.tick_clock_now_us();
+  const TimeUs waited = realtime_us() - kernel_stamp_us;
+  return (waited >= 0 && waited <= 1'000'000) ? read_at - waited : read_at;
+}
+
 void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) {
-  svc::InputValues values;
+  svc::InputRecord record;
   if (plan.recorded) {
     if (!plan.has_first_record) {
-      shared.input_ended.store(true);
+      shared.input_ended.store(true, std::memory_order_release);
       return;
     }
     // The first record is already fetched (its time is T_0). Pace records by log time.
@@ -157,18 +196,19 @@ void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) 
           static_cast<std::int64_t>(static_cast<double>(source.record_time_us() - plan.t0_us) *
                                     1000.0 / plan.speed);
       if (!sleep_until(due, shared.stop)) return;
-      source.apply(&values);
-      shared.table.write(values);
+      source.fetch(&record);
+      push_input(record, shared, true);
       if (source.read(0) != svc::InputSource::Read::kRecord) break;
     }
-    shared.input_ended.store(true);
+    shared.input_ended.store(true, std::memory_order_release);
     return;
   }
   while (!shared.stop.load(std::memory_order_relaxed)) {
     switch (source.read(100)) {
       case svc::InputSource::Read::kRecord:
-        source.apply(&values);
-        shared.table.write(values);
+        source.fetch(&record);
+        record.time_us = live_time_us(record.time_us, plan);
+        push_input(record, shared, false);
         break;
       case svc::InputSource::Read::kTimeout:
         break;
@@ -215,31 +255,35 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
 
   if (plan.max_speed) {
     // Log time: apply every record stamped <= T_k, then tick; stop after the last record.
-    svc::InputValues values;
+    svc::InputRecord record;
     bool pending = plan.has_first_record;
-    TimeUs last_applied_us = 0;
-    while (pending && !shared.stop.load(std::memory_order_relaxed)) {
-      const TimeUs t = plan.t0_us + k * plan.tick_us;
+    TimeUs last_applied_us = plan.t0_us;
+    // Ticks k with T_k <= the last record's time, as vmass-replay.
+    while (plan.has_first_record && !shared.stop.load(std::memory_order_relaxed)) {
+      const TimeUs t = plan.tick_time(k);
       while (pending && source.record_time_us() <= t) {
-        last_applied_us = source.record_time_us();
-        source.apply(&values);
+        last_applied_us = std::max(last_applied_us, source.record_time_us());
+        source.fetch(&record);
+        source.apply(record);
         pending = source.read(0) == svc::InputSource::Read::kRecord;
       }
+      if (!pending && t > last_applied_us) break;
       const std::int64_t start = mono_ns();
       stats.on_unpaced_tick();
-      const svc::TickRecord& record = loop.tick(k, t, values);
+      const svc::TickRecord& tick_record = loop.tick(k, t, source);
       stats.on_done(mono_ns() - start, false);
-      after_tick(record, loop, shared, plan, stats, k);
+      after_tick(tick_record, loop, shared, plan, stats, k);
       ++k;
-      if (!pending && plan.t0_us + k * plan.tick_us > last_applied_us) break;
     }
-    shared.input_ended.store(true);
+    shared.input_ended.store(true, std::memory_order_release);
   } else {
     const std::int64_t max_behind_ticks =
         std::max<std::int64_t>(1, static_cast<std::int64_t>(kNsPerSecond / plan.period_ns));
+    svc::InputRecord held;  // popped from the ring, not applied yet (stamped after its tick)
+    bool has_held = false;
     TimeUs last_record_us = 0;
     bool has_record = false;
-    // A recording's record stamped T_k is applied by the receive thread at mono0 + k P; tick k
+    // A recording's record stamped T_k is pushed by the receive thread at mono0 + k P; tick k
     // wakes half a period later so that it sees that record (as offline replay does) unless the
     // receive thread lags by more than P / 2.
     const std::int64_t offset_ns = plan.recorded ? plan.period_ns / 2 : 0;
@@ -248,21 +292,26 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
       if (!sleep_until(deadline, shared.stop)) break;
       const std::int64_t wake = mono_ns();
       stats.on_wake(deadline, wake);
-      const svc::InputValues values = shared.table.read();
-      const TimeUs t = plan.t0_us + k * plan.tick_us;
-      if (plan.recorded) {
-        // A finished recording: tick up to its last record, as offline replay does.
-        if (values.updates > 0) {
-          last_record_us = values.last_update_us;
-          has_record = true;
+      const TimeUs t = plan.tick_time(k);
+      // Read before draining: once it is set, every record is in the ring.
+      const bool ended = plan.recorded && shared.input_ended.load(std::memory_order_acquire);
+      // Fold the records received since the last tick into the table. A recording's records
+      // stamped after this tick wait for their own tick (as in offline replay); a live bus's are
+      // all applied (a frame stamped after T counts as age 0).
+      for (;;) {
+        if (!has_held) {
+          if (!shared.inputs.pop(&held)) break;
+          has_held = true;
         }
-        if (shared.input_ended.load(std::memory_order_acquire)) {
-          const svc::InputValues final_values = shared.table.read();
-          if (final_values.updates > 0) last_record_us = final_values.last_update_us;
-          if (!has_record || t > last_record_us) break;
-        }
+        if (plan.recorded && held.time_us > t) break;
+        source.apply(held);
+        has_held = false;
+        if (!has_record || held.time_us > last_record_us) last_record_us = held.time_us;
+        has_record = true;
       }
-      const svc::TickRecord& record = loop.tick(k, t, values);
+      // A finished recording: tick up to its last record, as offline replay does.
+      if (ended && !has_held && (!has_record || t > last_record_us)) break;
+      const svc::TickRecord& record = loop.tick(k, t, source);
       const std::int64_t done = mono_ns();
       ++k;
       const std::int64_t next_deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
@@ -301,6 +350,7 @@ svc::DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool s
   s.has_tick = shared.heartbeat.load(std::memory_order_acquire) > 0;
   if (s.has_tick) s.last = shared.latest.read();
   svc::copy_counters(ctx.source->counters(), &s);
+  s.frames_dropped += shared.input_drops.load(std::memory_order_relaxed);
   s.timing = shared.timing.read();
   s.timing.ticks = shared.heartbeat.load(std::memory_order_acquire);  // fresher than the summary
   s.publish_queue_drops = shared.queue_drops.load(std::memory_order_relaxed);
@@ -443,7 +493,6 @@ int run(const Options& options) {
   }
 
   // ------------------------------------------------------------------ input
-  std::optional<vmass::can::Decoder> decoder;
   std::unique_ptr<svc::InputSource> source;
   std::string error;
   if (!options.samples_csv.empty()) {
@@ -456,36 +505,39 @@ int run(const Options& options) {
       return 1;
     }
   } else {
-    if (settings.dbc_path.empty()) {
-      spdlog::error("{}: can.dbc: required to decode CAN frames", config.file);
+    // can.dbc and can.inputs: the compiled DBC and the signal mapping of the SignalTable.
+    vmass::signals::CanInputsLoad can = vmass::signals::load_can_inputs(config);
+    if (!can.ok()) {
+      spdlog::error("{}", can.error);
       return 2;
     }
-    vmass::can::DbcParseResult dbc = vmass::can::load_dbc_file(settings.dbc_path);
-    for (const vmass::can::DbcDiagnostic& d : dbc.diagnostics) {
-      if (d.severity == vmass::can::Severity::kError) spdlog::error("{}", d.to_string());
-    }
-    if (!dbc.ok()) {
-      spdlog::error("{}: cannot load the DBC file ({} errors)", settings.dbc_path,
-                    dbc.error_count());
-      return 1;
-    }
-    if (dbc.warning_count() > 0) {
+    const vmass::signals::CanInputs& can_inputs = *can.inputs;
+    if (!can_inputs.warnings.empty()) {
       spdlog::info("{}: {} format deviations tolerated (vmass-can check lists them)",
-                   settings.dbc_path, dbc.warning_count());
+                   can_inputs.dbc_path, can_inputs.warnings.size());
     }
-    decoder = vmass::can::Decoder::compile(std::move(dbc.database), &error);
-    if (!decoder) {
-      spdlog::error("{}: {}", settings.dbc_path, error);
-      return 1;
+    std::string unmapped;
+    for (int i = 0; i < vmass::kInputCount; ++i) {
+      const auto input = static_cast<vmass::Input>(i);
+      if (can_inputs.mapping.find(input) == nullptr) {
+        unmapped += (unmapped.empty() ? "" : ", ") + std::string(vmass::input_name(input));
+      }
+    }
+    std::string mapped = can_inputs.mapping.describe();
+    while (!mapped.empty() && mapped.back() == '\n') mapped.pop_back();
+    if (!mapped.empty()) spdlog::info("can.inputs:\n{}", mapped);
+    if (!unmapped.empty()) {
+      spdlog::warn("can.inputs: not mapped, stay invalid: {}", unmapped);
     }
     std::unique_ptr<svc::FrameSource> frames;
     if (!options.replay_log.empty()) {
       frames = svc::CandumpFrameSource::open(options.replay_log, &error);
+      plan.rounded_grid = true;  // vmass-replay --log's tick grid
     } else {
       vmass::can::SocketCanOptions can_options;
       can_options.interface =
           options.can_interface.empty() ? settings.daemon.can_interface : options.can_interface;
-      can_options.filters = vmass::can::filters_for(decoder->database());
+      can_options.filters = vmass::can::filters_for(can_inputs.decoder->database());
       const std::string invalid = can_options.validate();
       if (!invalid.empty()) {
         spdlog::error("{}", invalid);
@@ -497,12 +549,8 @@ int run(const Options& options) {
       spdlog::error("{}", error);
       return 1;
     }
-    // TODO(signal table): replace DecodeOnlyMapper by the can.inputs signal mapping.
-    spdlog::warn(
-        "CAN signal mapping (can.inputs) is not wired yet: frames are decoded and "
-        "counted, every estimator input stays invalid");
-    source = std::make_unique<svc::CanInputSource>(
-        std::move(frames), std::make_unique<svc::DecodeOnlyMapper>(*decoder));
+    source = std::make_unique<svc::CanInputSource>(std::move(frames), can_inputs.decoder,
+                                                   can_inputs.mapping);
   }
 
   // ------------------------------------------------------------------ LCM and state
@@ -511,7 +559,7 @@ int run(const Options& options) {
     spdlog::error("cannot open LCM at '{}'", settings.lcm.url);
     return 1;
   }
-  svc::EstimatorLoop loop(params, source->timeouts());
+  svc::EstimatorLoop loop(params);
 
   std::string state_path =
       options.state_file.empty() ? settings.daemon.state_file : options.state_file;
@@ -629,6 +677,9 @@ int run(const Options& options) {
   shared.stop_publisher.store(true, std::memory_order_release);
   sem_post(&shared.queue_sem);
   publisher_worker.join();
+  // The estimator thread has stopped: its input table can be read here.
+  const std::string input_problems = source->input_report();
+  if (!input_problems.empty()) spdlog::info("inputs: {}", input_problems);
   const bool saved = save_snapshot(state_path, shared.snapshot.read(), fingerprint, shared);
   const svc::DaemonStatus final_status = gather_status(ctx, shared, true);
   publisher.publish_status(final_status);

@@ -1,28 +1,35 @@
 // vmassd's threads around the vmass_service pieces.
 //
-//   receive thread    InputSource::read/apply -> SeqLock<InputValues>   (live bus, or a
-//                     recording paced by its log time / speed)
+//   receive thread    InputSource::read/fetch -> SpscQueue<InputRecord> (a live bus: frames
+//                     re-stamped into the tick clock, dropped and counted when the queue is
+//                     full; a recording: paced by its log time / speed, never dropped)
 //   estimator thread  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME) at tick_rate * speed;
-//                     sample_at + Pipeline::step; TickRecord -> SpscQueue; overruns counted
+//                     drains the input queue into the source's table (SignalTable::on_frame for
+//                     CAN), sample_at + Pipeline::step; TickRecord -> SpscQueue; overruns counted
 //   publisher thread  SpscQueue -> LCM (VMASS_ESTIMATE, VMASS_PAIRS); VMASS_STATUS periodically
 //   main thread       signals (sigtimedwait), sd_notify READY/STATUS/WATCHDOG/STOPPING, state
 //                     persistence, orderly shutdown (final status, final save)
 //
+// The input table (SignalTable) belongs to the estimator thread alone; only records (frames)
+// cross threads, through the SPSC ring, so nothing of the table is shared or locked.
+//
 // With `--speed max` there is no receive thread: the estimator thread reads the recording
 // itself and ticks in log time (T_k = T_0 + k / tick_rate), applying every record stamped <= T_k
-// before tick k and stopping after the last record, exactly as vmass-replay's TickResampler
-// does, so both give bit-identical estimates. The SPSC queue then applies back-pressure instead
-// of dropping.
+// before tick k and stopping after the last record, exactly as vmass-replay (TickResampler for
+// --samples, its SignalTable loop for --log) does, so both give bit-identical estimates. At a
+// finite speed the estimator also holds back a recording's records stamped after its tick, so
+// real-speed replay sees what offline replay sees unless the receive thread lags by more than
+// half a period. The publisher SPSC queue then applies back-pressure instead of dropping.
 //
-// After start-up the estimator thread allocates nothing (fixed-size records, seqlocks, a
-// preallocated ring); the receive thread allocates only in the samples-CSV parser.
+// After start-up the estimator thread allocates nothing (fixed-size records, SPSC rings,
+// seqlocks, the SignalTable's preallocated terms); the receive thread allocates only in the file
+// readers (samples CSV, candump lines).
 #pragma once
 
 #include <memory>
 #include <optional>
 #include <string>
 
-#include "vmass/can/decoder.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/service/input_source.hpp"
 #include "vmass/service/service_config.hpp"

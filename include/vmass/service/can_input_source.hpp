@@ -1,17 +1,19 @@
-// CAN input for the daemon: frames from a FrameSource (SocketCAN or a candump -l log), turned
-// into estimator inputs by a FrameMapper, behind the InputSource interface of the receive thread.
+// CAN input for the daemon: frames from a FrameSource (SocketCAN or a candump -l log) decoded
+// into estimator inputs by a signals::SignalTable (the config's `can:` section: DBC + signal
+// mapping), behind the InputSource interface:
 //
-//   FrameSource ──CanFrame──▶ FrameMapper ──▶ InputValues (latest value, time, validity)
-//   SocketCanFrameSource        DecodeOnlyMapper (today: DBC decode + counters, no inputs)
-//   CandumpFrameSource          the SignalTable of the CAN layer (to come: can.inputs mapping)
+//   reading thread:    FrameSource ──CanFrame──▶ InputRecord ──SpscQueue──▶
+//   estimator thread:  SignalTable::on_frame(frame, record time) ... SignalTable::sample_at(T_k)
 //
-// FrameMapper is the seam for the signal mapping (DBC message/signal -> Input, unit conversion,
-// counters/checksums, timeouts): the daemon only needs apply() and timeouts(). Until the mapping
-// exists, DecodeOnlyMapper classifies every frame against the DBC for the status counters
-// (decoded, unknown id, too short) and leaves every input invalid, so the estimate reports
-// degraded/inputs_invalid rather than anything made up.
+// The SignalTable lives on the estimator thread only (apply/sample_at/input_age_us), so its
+// values, ages and counters need no locking; the status counters decoded / unknown / bus_errors
+// are copied from the table's counters after every frame, malformed adds the table's too-short
+// frames to the reader's corrupt records. A frame is decoded at the record's time (the log time
+// of a recording; a live bus's frames are re-stamped into the daemon's tick clock by the reading
+// thread), which is what makes `vmassd --replay LOG --speed max` and `vmass-replay --log LOG`
+// identical.
 //
-// Thread-safety: as InputSource (one reading thread).
+// Thread-safety: as InputSource.
 #pragma once
 
 #include <fstream>
@@ -23,6 +25,7 @@
 #include "vmass/can/decoder.hpp"
 #include "vmass/can/socketcan.hpp"
 #include "vmass/service/input_source.hpp"
+#include "vmass/signals/signal_table.hpp"
 
 namespace vmass::service {
 
@@ -95,50 +98,36 @@ class SocketCanFrameSource final : public FrameSource {
   std::string interface_;
 };
 
-/// Turns frames into input values (the signal-mapping seam).
-class FrameMapper {
- public:
-  enum class Outcome : std::uint8_t {
-    kDecoded,    ///< a known message, decoded (whether or not it fed an input)
-    kUnknown,    ///< id not in the DBC
-    kMalformed,  ///< shorter than the DBC says (rejected, never zero-filled), or failed checks
-    kIgnored,    ///< remote request or error frame
-  };
-  virtual ~FrameMapper() = default;
-  /// Applies one frame (its time_us is the values' time) to *values. Allocates nothing.
-  virtual Outcome apply(const can::CanFrame& frame, InputValues* values) = 0;
-  virtual InputTimeouts timeouts() const = 0;
-};
-
-/// Classifies frames against the DBC and maps no signal (see the header comment).
-class DecodeOnlyMapper final : public FrameMapper {
- public:
-  explicit DecodeOnlyMapper(const can::Decoder& decoder, double timeout_s = 0.1);
-  Outcome apply(const can::CanFrame& frame, InputValues* values) override;
-  InputTimeouts timeouts() const override { return timeouts_; }
-
- private:
-  const can::Decoder& decoder_;
-  InputTimeouts timeouts_;
-};
-
 class CanInputSource final : public InputSource {
  public:
-  CanInputSource(std::unique_ptr<FrameSource> frames, std::unique_ptr<FrameMapper> mapper);
+  /// Frames from `frames`, decoded and mapped by a SignalTable built from `decoder` and
+  /// `mapping` (allocates here, never afterwards).
+  CanInputSource(std::unique_ptr<FrameSource> frames, std::shared_ptr<const can::Decoder> decoder,
+                 const signals::SignalMapping& mapping);
 
   Read read(int timeout_ms) override;
   TimeUs record_time_us() const override { return frame_.time_us; }
-  void apply(InputValues* values) override;
+  void fetch(InputRecord* record) const override;
+
+  void apply(const InputRecord& record) override;
+  Sample sample_at(TimeUs tick_us) override { return table_.sample_at(tick_us); }
+  TimeUs input_age_us(Input input, TimeUs tick_us) const override {
+    return table_.age_us(input, tick_us);
+  }
+  std::string input_report() const override;
+
   bool recorded() const override { return frames_->recorded(); }
-  InputTimeouts timeouts() const override { return mapper_->timeouts(); }
   std::string describe() const override { return frames_->describe(); }
+
+  /// The table (estimator thread).
+  const signals::SignalTable& table() const { return table_; }
 
  private:
   void sync_counters();
 
   std::unique_ptr<FrameSource> frames_;
-  std::unique_ptr<FrameMapper> mapper_;
-  can::CanFrame frame_;
+  signals::SignalTable table_;
+  can::CanFrame frame_;  ///< reading thread
 };
 
 }  // namespace vmass::service

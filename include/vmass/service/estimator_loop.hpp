@@ -1,6 +1,6 @@
 // EstimatorLoop: what the daemon's estimator thread does at each tick, without the thread:
 //
-//   InputValues (latest inputs) --sample_at(T)--> Sample --Pipeline::step--> TickRecord
+//   InputSource's table --sample_at(T)--> Sample --Pipeline::step--> TickRecord
 //
 // The tick time T is the caller's: T_k = T_0 + k / tick_rate_hz on the input's clock (the log
 // time of a recording, CLOCK_REALTIME for a live bus), so the pipeline always sees the regular
@@ -31,10 +31,11 @@ struct TickRecord {
 class EstimatorLoop {
  public:
   /// params must be valid.
-  EstimatorLoop(const PipelineParams& params, const InputTimeouts& timeouts);
+  explicit EstimatorLoop(const PipelineParams& params);
 
-  /// Runs tick number `tick` at time tick_us on the latest values.
-  const TickRecord& tick(std::int64_t tick, TimeUs tick_us, const InputValues& values);
+  /// Runs tick number `tick` at time tick_us on the source's table (estimator thread: see
+  /// InputSource): the Sample, the pipeline step, and each input's age and validity.
+  const TickRecord& tick(std::int64_t tick, TimeUs tick_us, InputSource& source);
 
   Pipeline& pipeline() { return pipeline_; }
   const Pipeline& pipeline() const { return pipeline_; }
@@ -42,7 +43,6 @@ class EstimatorLoop {
 
  private:
   Pipeline pipeline_;
-  InputTimeouts timeouts_;
   TickRecord record_;
 };
 

@@ -1,35 +1,58 @@
-// InputSource: where the daemon's estimator inputs come from, as seen by its receive thread.
+// InputSource: where the daemon's estimator inputs come from, split between the two threads
+// that touch it:
 //
-// The receive thread keeps an InputValues (the latest value, time and validity of every
-// estimator input) and publishes it to the estimator through a SeqLock once per update; at each
-// tick the estimator turns the latest InputValues into the tick's Sample with sample_at():
+//   reading thread    read() fetches the next record and says when it describes (input clock:
+//                     log time for recordings, the tick clock for a live bus); fetch() copies it
+//                     into an InputRecord, which goes to the estimator thread through an SPSC
+//                     queue (the split lets the daemon pace a recording by its log time)
+//   estimator thread  apply() folds records into the source's input table; at each tick
+//                     sample_at(T) turns the table into the tick's Sample and input_age_us()
+//                     says how old each input is
+//
+// So the input table (a SignalTable for CAN, an InputValues for a samples CSV) lives on the
+// estimator thread only; nothing in it is shared. With `--speed max` one thread does both.
+//
+// Validity rule of the samples-CSV table (sample_at(InputValues...) below):
 //
 //   input i is valid at tick time T  <=>  its last value was valid
 //                                         and T - time_i <= timeout_i
 //
-// (For a samples CSV every row updates every input at its time, so this is exactly the
-// zero-order hold of vmass::TickResampler with stale_after = timeout.)
+// (every row updates every input at its time, so this is exactly the zero-order hold of
+// vmass::TickResampler with stale_after = timeout). The CAN table's rule is SignalTable's
+// (vmass/signals/signal_table.hpp): per term of each input, timeouts from the `can.inputs`
+// mapping or the DBC cycle times.
 //
-// A source delivers records one at a time: read() fetches the next record and says when it
-// describes (input clock: log time for recordings, CLOCK_REALTIME kernel stamps for SocketCAN);
-// apply() folds it into the InputValues. The split lets the receive thread pace a recording by
-// its log time between the two calls. Implementations: SamplesCsvSource (samples.csv),
-// CanInputSource (a FrameSource of CAN frames + a FrameMapper, see can_input_source.hpp).
+// Implementations: SamplesCsvSource (samples.csv), CanInputSource (a FrameSource of CAN frames
+// decoded by a signals::SignalTable, see can_input_source.hpp).
 //
-// Counters are atomics written by the reading thread and read by the status publisher.
-// Thread-safety: read()/apply() from one thread; counters() and health() from any thread.
+// Counters are atomics (each written by one thread, or added to by both) read by the status
+// publisher. Thread-safety: read()/record_time_us()/fetch() from one reading thread;
+// apply()/sample_at()/input_age_us()/input_report() from one estimator thread; counters(),
+// health(), recorded() and describe() from any thread.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <string>
 
+#include "vmass/can/can_frame.hpp"
 #include "vmass/core/sample.hpp"
 #include "vmass/service/seqlock.hpp"
 
 namespace vmass::service {
 
-/// Latest value, time and validity of every input (trivially copyable).
+/// One record on its way from the reading thread to the estimator thread (trivially copyable:
+/// goes through SpscQueue). Which member is meaningful depends on the source.
+struct InputRecord {
+  InputRecord() : frame() {}
+  TimeUs time_us = 0;  ///< when the record describes (input clock; may be re-stamped live)
+  union {
+    can::CanFrame frame;  ///< CanInputSource
+    Sample sample;        ///< SamplesCsvSource
+  };
+};
+
+/// Latest value, time and validity of every input of a samples CSV (trivially copyable).
 struct InputValues {
   Sample latest;  ///< values and validity bits of the latest update of each input
   TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1, -1, -1, -1};  ///< -1: never
@@ -38,7 +61,7 @@ struct InputValues {
 };
 static_assert(kInputCount == 9, "update InputValues::input_time_us's initialiser");
 
-/// Per-input timeouts (microseconds).
+/// Per-input timeouts (microseconds) of a samples CSV.
 struct InputTimeouts {
   TimeUs timeout_us[kInputCount] = {};
 };
@@ -46,7 +69,10 @@ struct InputTimeouts {
 /// The tick's Sample at time tick_us from the latest values (see the header comment).
 Sample sample_at(const InputValues& values, TimeUs tick_us, const InputTimeouts& timeouts);
 
-/// Counters of a source since start; frames for CAN, rows for a samples CSV.
+/// Counters of a source since start; frames for CAN, rows for a samples CSV. For CAN, decoded,
+/// unknown and bus_errors are the SignalTable's (estimator thread); received, dropped and
+/// reopens the reader's (reading thread); malformed is added to by both (corrupt records, frames
+/// shorter than their DBC message).
 struct SourceCounters {
   std::atomic<std::int64_t> received{0};    ///< frames (rows) read
   std::atomic<std::int64_t> decoded{0};     ///< frames of a known message decoded (good rows)
@@ -72,7 +98,7 @@ struct SourceHealth {
 class InputSource {
  public:
   enum class Read : std::uint8_t {
-    kRecord,   ///< a record is ready: record_time_us(), then apply()
+    kRecord,   ///< a record is ready: record_time_us(), then fetch()
     kTimeout,  ///< nothing within the timeout (live sources)
     kDown,     ///< the input is lost for now (interface down/gone); call read() again
     kEnd,      ///< end of a recording
@@ -80,17 +106,28 @@ class InputSource {
 
   virtual ~InputSource() = default;
 
+  // ---------------------------------------------------------------- reading thread
   /// Fetches the next record, waiting up to timeout_ms for a live source.
   virtual Read read(int timeout_ms) = 0;
   /// Time of the record read() fetched, microseconds (input clock).
   virtual TimeUs record_time_us() const = 0;
-  /// Folds the fetched record into *values (and counts it).
-  virtual void apply(InputValues* values) = 0;
+  /// Copies the record read() fetched (record->time_us = record_time_us()). Allocates nothing.
+  virtual void fetch(InputRecord* record) const = 0;
 
+  // ---------------------------------------------------------------- estimator thread
+  /// Folds one record into the input table, at record.time_us. Allocates nothing.
+  virtual void apply(const InputRecord& record) = 0;
+  /// The Sample of a tick at tick_us from the table. Allocates nothing.
+  virtual Sample sample_at(TimeUs tick_us) = 0;
+  /// tick_us - time of the input's last update (>= 0), or -1 when never received.
+  virtual TimeUs input_age_us(Input input, TimeUs tick_us) const = 0;
+  /// Per-input problems seen so far ("speed 2 stale, 1 invalid; ..."), "" when none. Allocates:
+  /// for the end of a run (after the estimator thread stopped).
+  virtual std::string input_report() const { return ""; }
+
+  // ---------------------------------------------------------------- any thread
   /// A recording (paced by its own time stamps) rather than a live bus.
   virtual bool recorded() const = 0;
-  /// How long each input stays valid after its last update.
-  virtual InputTimeouts timeouts() const = 0;
   /// E.g. "samples:drive.csv", "replay:drive.log", "socketcan:can0".
   virtual std::string describe() const = 0;
 

@@ -2,8 +2,10 @@
 // record at its time_s, updating every input (an empty cell: invalid). A legitimate offline
 // input (simulated drives, signals decoded elsewhere) and the daemon's end-to-end test path.
 //
+// Its input table is an InputValues (the latest row, per-input times) with sample_at() of
+// input_source.hpp: inputs older than timeout_s are stale.
 // Counters: received = rows read, decoded = good rows, malformed = rows skipped as malformed.
-// Reading allocates (CSV parsing); it runs on the receive thread, never the estimator's.
+// Reading allocates (CSV parsing); it runs on the reading thread, never the estimator's.
 // Thread-safety: as InputSource.
 #pragma once
 
@@ -24,10 +26,17 @@ class SamplesCsvSource final : public InputSource {
 
   Read read(int timeout_ms) override;
   TimeUs record_time_us() const override { return record_.time_us; }
-  void apply(InputValues* values) override;
+  void fetch(InputRecord* record) const override;
+
+  void apply(const InputRecord& record) override;
+  Sample sample_at(TimeUs tick_us) override;
+  TimeUs input_age_us(Input input, TimeUs tick_us) const override;
+
   bool recorded() const override { return true; }
-  InputTimeouts timeouts() const override { return timeouts_; }
   std::string describe() const override { return "samples:" + path_; }
+
+  /// The table (estimator thread).
+  const InputValues& values() const { return values_; }
 
   /// Row problems reported by the reader (file:line: ...), at most the first 100.
   const std::vector<std::string>& warnings() const { return reader_.warnings(); }
@@ -38,7 +47,8 @@ class SamplesCsvSource final : public InputSource {
   std::string path_;
   SamplesCsvReader reader_;
   InputTimeouts timeouts_;
-  Sample record_;
+  Sample record_;       ///< reading thread
+  InputValues values_;  ///< estimator thread
 };
 
 }  // namespace vmass::service
