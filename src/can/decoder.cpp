@@ -46,6 +46,30 @@ void DecodeStats::count(DecodeStatus status) {
 
 namespace {
 
+// The frame-word form of a signal (Decoder::WordSignal), or false when it has none (a float,
+// 64 bits, or bits beyond byte 7). Bit b of the little-endian word is bit b % 8 of byte b / 8
+// (Intel); the big-endian word holds byte 0 on top, so linear position p is bit 63 - p.
+template <class WordSignal>
+bool word_signal(const Signal& sg, WordSignal& out) {
+  if (sg.value_type != ValueType::kInteger || sg.length < 1 || sg.length >= 64) return false;
+  int msb = 0;  // position of the field's most significant bit in the word
+  if (sg.byte_order == ByteOrder::kIntel) {
+    msb = sg.start_bit + sg.length - 1;
+  } else {
+    const int first_linear = (sg.start_bit / 8) * 8 + (7 - sg.start_bit % 8);
+    if (first_linear + sg.length - 1 > 63) return false;
+    msb = 63 - first_linear;
+  }
+  if (sg.start_bit < 0 || msb > 63 || msb - (sg.length - 1) < 0) return false;
+  out.factor = sg.factor;
+  out.offset = sg.offset;
+  out.word = sg.byte_order == ByteOrder::kIntel ? 0 : 1;
+  out.to_top = static_cast<std::uint8_t>(63 - msb);
+  out.unsigned_shift = sg.is_signed ? 0 : 1;
+  out.down = static_cast<std::uint8_t>(64 - sg.length - out.unsigned_shift);
+  return true;
+}
+
 bool compile_signal(const Signal& sg, int length_bytes, CompiledSignal& out, std::string& why) {
   if (sg.length < 1 || sg.length > 64) {
     why = "length " + std::to_string(sg.length) + " is not 1..64 bits";
@@ -110,6 +134,7 @@ std::optional<Decoder> Decoder::compile(Database database, std::string* error) {
     cm.order_begin = static_cast<std::uint32_t>(d.order_.size());
     cm.length = static_cast<std::uint8_t>(m.length);
     int switches = 0;
+    bool word_path = m.length <= kClassicMaxLen;
     for (const Signal& sg : m.signals) {
       CompiledSignal cs;
       std::string why;
@@ -137,9 +162,13 @@ std::optional<Decoder> Decoder::compile(Database database, std::string* error) {
         d.ranges_.insert(d.ranges_.end(), sg.mux_ranges.begin(), sg.mux_ranges.end());
         if (d.ranges_.size() > 0xFFFF) return failed("too many multiplexor ranges");
       }
+      WordSignal ws;
+      if (!word_signal(sg, ws)) word_path = false;
       d.signals_.push_back(cs);
+      d.word_signals_.push_back(ws);
     }
     cm.switch_count = static_cast<std::uint8_t>(switches);
+    cm.frame_word = switches == 0 && word_path;
     // Visiting order: by depth in the multiplexor tree (switches before what they select),
     // DBC order within a depth.
     std::vector<int> depth(m.signals.size(), 0);
@@ -177,13 +206,27 @@ std::optional<Decoder> Decoder::compile(Database database, std::string* error) {
                     ": duplicate extended id");
     }
   }
+  unsigned bits = 1;
+  while ((std::size_t{1} << bits) < 2 * d.extended_.size()) ++bits;
+  d.extended_hash_bits_ = bits;
+  d.extended_hash_.assign(std::size_t{1} << bits, {0u, -1});
+  for (const auto& [id, index] : d.extended_) {
+    std::size_t slot = (id * 2654435769u) >> (32 - bits);
+    while (d.extended_hash_[slot].second >= 0) slot = (slot + 1) & (d.extended_hash_.size() - 1);
+    d.extended_hash_[slot] = {id, index};
+  }
   return d;
 }
 
 int Decoder::find_extended(std::uint32_t id) const {
-  const auto it = std::lower_bound(extended_.begin(), extended_.end(), id,
-                                   [](const auto& e, std::uint32_t v) { return e.first < v; });
-  return it != extended_.end() && it->first == id ? it->second : -1;
+  const std::size_t mask = extended_hash_.size() - 1;
+  std::size_t slot = (id * 2654435769u) >> (32 - extended_hash_bits_);
+  for (;;) {  // terminates: the table is at most half full
+    const auto& e = extended_hash_[slot];
+    if (e.second < 0) return -1;
+    if (e.first == id) return e.second;
+    slot = (slot + 1) & mask;
+  }
 }
 
 SignalRef Decoder::find_signal(std::string_view message, std::string_view signal) const {
