@@ -1,16 +1,49 @@
 #!/bin/bash
-# vmassd on a real SocketCAN interface (vcan0, inside tests/can/vcan_vm.sh's qemu VM): frames are
-# received with kernel time stamps and classified against the DBC; the interface going down and
-# being deleted and re-created is reported as input_lost on VMASS_STATUS while vmassd keeps
-# running and re-opens it; SIGTERM stops it with exit 0. The LCM output goes to an LCM log file
-# that is checked here afterwards with the generated Python types.
+# vmassd on a real SocketCAN interface (vcan0, inside tests/can/vcan_vm.sh's qemu VM), in two
+# phases within one boot. The LCM output goes to LCM log files checked here afterwards with the
+# generated Python types.
 #
-#   vmassd_vcan_test.sh VCAN_VM VMASSD DBC PYTHON_TYPES_DIR      (outside: boots the VM)
-#   vmassd_vcan_test.sh --inside VMASSD DBC                       (inside the VM)
+# 1. Counters and loss (Prius DBC, cansend): frames are received with kernel time stamps and
+#    classified against the DBC; the interface going down, then being deleted and re-created, is
+#    reported as input_lost on VMASS_STATUS while vmassd keeps running and re-opens it.
+# 2. A simulated drive (vmass-sim paper_exp2, its first 60 s) played onto vcan0 with canplayer
+#    while `vmassd --can vcan0` estimates, with `ip link set vcan0 down` / `up` between its two
+#    30 s halves; candump records what the bus carried. vmassd must report input_lost while vcan0
+#    is down, run with every input valid again after it is up, and decode every frame. Its
+#    estimates must match vmass-replay --log:
+#      a. on the recorded bus traffic, put on the daemon's own tick grid (tick k = row k): at
+#         every tick |mass difference| <= 0.5 x the daemon's published mass_std_kg, and fewer
+#         than 2 % of the frames applied late;
+#      b. on the original 60 s log: the final mass within 1 %.
+#    Why not bit for bit: frame timing differs. canplayer sends each frame at its log time plus
+#    its own scheduling delay (ms in the emulated VM), then vmassd ticks on its own grid, so a
+#    frame lands in another tick than in the original log: that is (b), where the 1.5 s gap of
+#    the down/up also drops the pairs it would have made; observed 0.01-0.13 %, the paper's
+#    errors are a few %. Comparing on the recorded traffic (a) removes that, and what remains
+#    is (i) records the receive thread reads more than half a period after their kernel stamp
+#    (a starved thread: the VM is emulated, p99 wake-up jitter ~15 ms there), which the daemon
+#    applies one tick late and counts ("input records late": 8 to 242 of 33600 in our runs), and
+#    (ii) the daemon's re-stamp of a live frame into its tick clock differs from the kernel
+#    stamp candump logs by microseconds, which moves a frame lying that close to a tick
+#    boundary to the neighbouring tick. Each changes one differenced pair a little; observed
+#    worst |dm| 0.04-0.21 std (0.3-2.9 kg), median 0-0.07 std over 4 runs. The bound 0.5 std: the
+#    daemon and the offline replay never disagree by a meaningful part of the estimate's own
+#    uncertainty.
+# SIGTERM stops vmassd with exit 0 in both phases.
+#
+#   vmassd_vcan_test.sh VCAN_VM VMASSD PRIUS_DBC PYTHON_TYPES_DIR VMASS_SIM VMASS_REPLAY
+#   vmassd_vcan_test.sh --inside VMASSD PRIUS_DBC                      (inside the VM)
 set -euo pipefail
 
 if [ "${1:-}" = "--inside" ]; then
   vmassd=$2 dbc=$3 out=$VCAN_VM_OUT
+  # vmassd logs "vmassd running" once its socket is open and its threads run (start-up in the
+  # emulated VM, loading libraries over 9p, can take seconds).
+  ready() {
+    for _ in $(seq 300); do grep -q "vmassd running" "$1" 2>/dev/null && return 0; sleep 0.1; done
+    echo "vmassd did not start:"; cat "$1"; return 1
+  }
+  # ------------------------------------------------------------------ phase 1
   cat > "$out/vmassd.yaml" <<YAML
 vehicle:
   empty_mass_kg: 1500
@@ -25,6 +58,8 @@ suspension:
   stiffness_n_per_m: 30000
 can:
   dbc: $dbc
+  inputs:
+    speed: {message: SPEED, signal: SPEED}
 lcm:
   status_period_s: 0.25
 daemon:
@@ -33,7 +68,8 @@ YAML
   "$vmassd" --config "$out/vmassd.yaml" --lcm-url "file://$out/out.lcm?mode=w" --no-restore \
     2> "$out/vmassd.log" &
   pid=$!
-  sleep 2
+  ready "$out/vmassd.log"
+  sleep 0.5
   send() { for _ in $(seq "$1"); do cansend vcan0 "$2"; done; }
   send 50 0B4#0000000000001000   # SPEED, in the DBC
   send 5 7FF#0102                # not in the DBC: the kernel filter (DBC ids) drops it
@@ -50,15 +86,57 @@ YAML
   sleep 1
   kill -TERM "$pid"
   rc=0; wait "$pid" || rc=$?
-  echo "vmassd exit status $rc"
+  echo "vmassd (phase 1) exit status $rc"
+  [ "$rc" = 0 ] || exit "$rc"
+
+  # ------------------------------------------------------------------ phase 2
+  sim=$out/sim
+  # candump writes to RAM: writing to the VM's shared folder is slow enough to lose frames.
+  mkdir -p "$out/ram" && mount -t tmpfs -o size=64m tmpfs "$out/ram"
+  "$vmassd" --config "$sim/config_vcan.yaml" --can vcan0 --no-restore \
+    --lcm-url "file://$out/drive.lcm?mode=w" 2> "$out/vmassd_drive.log" &
+  pid=$!
+  ready "$out/vmassd_drive.log"
+  sleep 0.5
+  # candump stamps frames with the same kernel receive time as vmassd's socket.
+  candump -L vcan0 > "$out/ram/captured1.log" &
+  dump=$!
+  sleep 0.2
+  canplayer -I "$sim/part1.log" vcan0=can0
+  sleep 0.2; kill "$dump"; wait "$dump" || true
+  ip link set vcan0 down; echo "vcan0 down"; sleep 1
+  ip link set vcan0 up; echo "vcan0 up"
+  sleep 0.5   # vmassd's reader notices (ENETDOWN is reported on its next read)
+  candump -L vcan0 > "$out/ram/captured2.log" &
+  dump=$!
+  sleep 0.2
+  canplayer -I "$sim/part2.log" vcan0=can0
+  sleep 2; kill "$dump"; wait "$dump" || true   # 2 s: the daemon's reader catches up
+  kill -TERM "$pid"
+  rc=0; wait "$pid" || rc=$?
+  echo "vmassd (phase 2) exit status $rc"
+  cp "$out/ram/captured1.log" "$out/ram/captured2.log" "$out/"
+  umount "$out/ram"
   exit "$rc"
 fi
 
-vcan_vm=$1 vmassd=$2 dbc=$3 pydir=$4
+vcan_vm=$1 vmassd=$2 dbc=$3 pydir=$4 sim_bin=$5 replay_bin=$6
 out=$(mktemp -d /tmp/vmassd_vcan.XXXXXX)
 trap 'rm -rf "$out"' EXIT
 [ -z "${KEEP_VCAN_OUT:-}" ] || trap - EXIT
-"$vcan_vm" --out "$out" --timeout 300 -- "$0" --inside "$vmassd" "$dbc"
+
+# The drive: paper_exp2's first 60 s, in two halves of 30 s.
+"$sim_bin" --scenario paper_exp2 --seed 1 --out "$out/sim" > /dev/null
+awk '{ t = substr($1, 2, length($1) - 2) + 0; if (t < 60) print }' "$out/sim/drive.log" \
+  > "$out/sim/drive60.log"
+awk '{ t = substr($1, 2, length($1) - 2) + 0; if (t < 30) print > P1; else print > P2 }' \
+  P1="$out/sim/part1.log" P2="$out/sim/part2.log" "$out/sim/drive60.log"
+{ cat "$out/sim/config.yaml"; printf 'lcm:\n  status_period_s: 0.25\n'; } \
+  > "$out/sim/config_vcan.yaml"
+
+"$vcan_vm" --out "$out" --timeout 420 -- "$0" --inside "$vmassd" "$dbc"
+
+# ------------------------------------------------------------------ phase 1 checks
 python3 - "$out/out.lcm" "$pydir" <<'PY'
 import struct, sys
 sys.path.insert(0, sys.argv[2])
@@ -77,10 +155,10 @@ while pos + 28 <= len(data):
         estimates += 1
 states = [s.state_name for s in statuses]
 last = statuses[-1]
-print("states:", " ".join(dict.fromkeys(states)))
-print("final: received=%d decoded=%d unknown=%d malformed=%d reopens=%d ticks=%d estimates=%d"
-      % (last.frames_received, last.frames_decoded, last.frames_unknown, last.frames_malformed,
-         last.source_reopens, last.ticks, estimates))
+print("phase 1 states:", " ".join(dict.fromkeys(states)))
+print("phase 1 final: received=%d decoded=%d unknown=%d malformed=%d reopens=%d ticks=%d "
+      "estimates=%d" % (last.frames_received, last.frames_decoded, last.frames_unknown,
+                        last.frames_malformed, last.source_reopens, last.ticks, estimates))
 fails = []
 if "input_lost" not in states: fails.append("input_lost never reported")
 lost_at = states.index("input_lost") if "input_lost" in states else len(states)
@@ -99,5 +177,117 @@ if fails:
         print("  %6.2f s %-11s decoded=%d malformed=%d reopens=%d %s"
               % (s.uptime_s, s.state_name, s.frames_decoded, s.frames_malformed,
                  s.source_reopens, s.detail))
+sys.exit(1 if fails else 0)
+PY
+
+# ------------------------------------------------------------------ phase 2 checks
+# Reference a: the bus traffic as recorded, preceded by one frame of an id that is not in the DBC
+# at the daemon's tick 0, so that vmass-replay's ticks (T_0 = its first frame) fall on the
+# daemon's grid and its row k is the daemon's tick k.
+t0=$(python3 - "$out/drive.lcm" "$pydir" <<'PY'
+import struct, sys
+sys.path.insert(0, sys.argv[2])
+import vmass
+data = open(sys.argv[1], "rb").read()
+pos = 0
+while pos + 28 <= len(data):
+    _, _, _, clen, dlen = struct.unpack(">IqqII", data[pos:pos + 28])
+    channel = data[pos + 28:pos + 28 + clen].decode()
+    if channel == "VMASS_ESTIMATE":
+        e = vmass.mass_estimate_t.decode(data[pos + 28 + clen:pos + 28 + clen + dlen])
+        print("%d %d" % (e.utime, e.tick))
+        break
+    pos += 28 + clen + dlen
+PY
+)
+read -r first_utime first_tick <<< "$t0"
+t0_us=$((first_utime - first_tick * 10000))
+printf '(%d.%06d) vcan0 7FF#00\n' $((t0_us / 1000000)) $((t0_us % 1000000)) > "$out/aligned.log"
+cat "$out/captured1.log" "$out/captured2.log" >> "$out/aligned.log"
+"$replay_bin" --config "$out/sim/config_vcan.yaml" --log "$out/aligned.log" \
+  --out "$out/aligned.csv" > "$out/aligned.txt" 2> "$out/aligned.err"
+"$replay_bin" --config "$out/sim/config_vcan.yaml" --log "$out/sim/drive60.log" \
+  --out "$out/original.csv" > "$out/original.txt" 2> "$out/original.err"
+
+python3 - "$out" "$pydir" <<'PY'
+import csv, re, struct, sys
+out = sys.argv[1]
+sys.path.insert(0, sys.argv[2])
+import vmass
+data = open(out + "/drive.lcm", "rb").read()
+pos, statuses, estimates = 0, [], []
+while pos + 28 <= len(data):
+    _, _, _, clen, dlen = struct.unpack(">IqqII", data[pos:pos + 28])
+    channel = data[pos + 28:pos + 28 + clen].decode()
+    payload = data[pos + 28 + clen:pos + 28 + clen + dlen]
+    pos += 28 + clen + dlen
+    if channel == "VMASS_STATUS":
+        statuses.append(vmass.status_t.decode(payload))
+    elif channel == "VMASS_ESTIMATE":
+        estimates.append(vmass.mass_estimate_t.decode(payload))
+captured = sum(1 for f in ("/captured1.log", "/captured2.log") for _ in open(out + f))
+aligned = list(csv.DictReader(open(out + "/aligned.csv")))
+original = list(csv.DictReader(open(out + "/original.csv")))
+last = statuses[-1]
+states = [s.state_name for s in statuses]
+print("phase 2 states:", " ".join(dict.fromkeys(states)))
+print("phase 2 final: received=%d decoded=%d dropped=%d captured=%d ticks=%d overruns=%d "
+      "skipped=%d jitter p50/p99/max %.0f/%.0f/%.0f us"
+      % (last.frames_received, last.frames_decoded, last.frames_dropped, captured, last.ticks,
+         last.tick_overruns, last.ticks_skipped, last.jitter_p50_us, last.jitter_p99_us,
+         last.jitter_max_us))
+fails = []
+if last.state_name != "stopping": fails.append("final status is not 'stopping'")
+if last.frames_decoded != captured:
+    fails.append("decoded %d != %d frames on the bus" % (last.frames_decoded, captured))
+if last.frames_dropped != 0: fails.append("%d frames dropped" % last.frames_dropped)
+late = re.search(r"(\d+) input records late", open(out + "/vmassd_drive.log").read())
+late = int(late.group(1)) if late else -1
+print("late records: %d of %d" % (late, captured))
+if not 0 <= late < 0.02 * captured: fails.append("%d input records late" % late)
+lost = [i for i, s in enumerate(statuses) if s.state_name == "input_lost"]
+if not lost: fails.append("input_lost never reported while vcan0 was down")
+else:
+    after = statuses[lost[-1] + 1:]
+    if not any(s.state_name == "running" and all(s.input_valid) for s in after):
+        fails.append("not running with every input valid after vcan0 came back")
+
+# a. Tick by tick against vmass-replay on the recorded traffic, on the daemon's grid.
+by_tick = {e.tick: e for e in estimates}
+compared, worst, ratios = 0, (0.0, 0.0, -1), []
+for k, row in enumerate(aligned):
+    e = by_tick.get(k)
+    if e is None or not e.mass_known: continue
+    compared += 1
+    dm = abs(e.mass_kg - float(row["mass_kg"]))
+    ratio = dm / max(e.mass_std_kg, 1e-9)
+    ratios.append(ratio)
+    if ratio > worst[0]: worst = (ratio, dm, k)
+ratios.sort()
+final_k = len(aligned) - 1
+fe = by_tick.get(final_k)
+print("a. recorded traffic: %d ticks compared; |dm| / std median %.3f, worst %.3f (%.3f kg at "
+      "tick %d); final: daemon %.3f kg, vmass-replay %s kg; pairs daemon %d/%d, replay %s/%s"
+      % (compared, ratios[len(ratios) // 2] if ratios else float("nan"), worst[0], worst[1],
+         worst[2], fe.mass_kg if fe else float("nan"), aligned[-1]["mass_kg"],
+         fe.longitudinal_accepted if fe else -1, fe.lateral_accepted if fe else -1,
+         aligned[-1]["longitudinal_pairs"], aligned[-1]["lateral_pairs"]))
+if compared < 4000: fails.append("only %d ticks compared" % compared)
+if worst[0] > 0.5:
+    fails.append("tick %d differs by %.3f kg = %.2f std > 0.5 std" % (worst[2], worst[1], worst[0]))
+
+# b. Final mass against vmass-replay on the original 60 s log.
+final_d = [e for e in estimates if e.mass_known][-1].mass_kg
+final_o = float(original[-1]["mass_kg"])
+rel = abs(final_d - final_o) / final_o
+print("b. original log: daemon %.1f kg, vmass-replay %.1f kg, difference %.2f %%"
+      % (final_d, final_o, 100 * rel))
+if rel > 0.01: fails.append("final mass %.2f %% from vmass-replay on the original log" % (100 * rel))
+for f in fails: print("FAIL:", f)
+if fails:
+    for s in statuses:
+        print("  %6.2f s %-11s decoded=%d valid=%s %s"
+              % (s.uptime_s, s.state_name, s.frames_decoded,
+                 "".join("1" if v else "0" for v in s.input_valid), s.detail))
 sys.exit(1 if fails else 0)
 PY
