@@ -3,10 +3,14 @@
 //
 //   vmass-monitor [--config FILE] [--lcm-url URL] [--estimate-channel C] [--status-channel C]
 //                 [--once | --count N | --rates SECONDS] [--timeout SECONDS] [--plain]
+//                 [--interval SECONDS]
 //
-//   (default)      redraw up to 5 times a second until Ctrl-C
+//   (default)      redraw up to 5 times a second until Ctrl-C (in a terminal; --plain, or stdout
+//                  not a terminal: one report per second, or per --interval)
 //   --once         print one report when an estimate and a status have arrived, then exit
-//   --count N      exit after N estimates (printing the report once at the end)
+//   --count N      exit after N estimates: in a terminal the live view meanwhile, otherwise
+//                  (or --plain) the report once at the end, and every --interval when given
+//   --interval S   seconds between reports (live view default 0.2, plain default 1)
 //   --rates S      listen S seconds, then print per-channel message rates and how many fields
 //                  were not finite (exit 1 when a field was not finite or nothing arrived)
 //   --timeout S    give up (exit 1) when nothing arrived within S seconds (default 10 for
@@ -31,6 +35,15 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// Draws `text` over the previous view: home, each line cleared to its end, then whatever is
+/// below cleared.
+void redraw(const std::string& text) {
+  std::string screen = "\x1b[H";
+  for (char c : text) screen += c == '\n' ? std::string("\x1b[K\n") : std::string(1, c);
+  screen += "\x1b[J";
+  std::fputs(screen.c_str(), stdout);
+}
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
 
@@ -177,7 +190,7 @@ int main(int argc, char** argv) {
   std::string config_path, url, estimate_channel, status_channel;
   bool once = false, plain = false;
   long count = 0;
-  double rates_s = 0.0, timeout_s = -1.0;
+  double rates_s = 0.0, timeout_s = -1.0, interval_s = 0.0;
   app.add_option("--config", config_path, "vmass config (for its lcm: URL and channel names)");
   app.add_option("--lcm-url", url, "LCM URL (default: the config's, else LCM's default)");
   app.add_option("--estimate-channel", estimate_channel, "default VMASS_ESTIMATE");
@@ -190,6 +203,10 @@ int main(int argc, char** argv) {
           ->check(CLI::PositiveNumber);
   app.add_option("--timeout", timeout_s, "exit 1 when nothing arrives within this many seconds");
   app.add_flag("--plain", plain, "no ANSI redraw (default when stdout is not a terminal)");
+  app.add_option("--interval", interval_s,
+                 "seconds between reports (live view 0.2, plain 1; with --count --plain: only "
+                 "when given)")
+      ->check(CLI::PositiveNumber);
   once_opt->excludes(count_opt)->excludes(rates_opt);
   count_opt->excludes(rates_opt);
   CLI11_PARSE(app, argc, argv);
@@ -213,7 +230,13 @@ int main(int argc, char** argv) {
   if (!status_channel.empty()) lcm_settings.status_channel = status_channel;
   const bool batch = once || count > 0 || rates_s > 0.0;
   if (timeout_s < 0.0 && (once || count > 0)) timeout_s = 10.0;
-  const bool ansi = !plain && !batch && ::isatty(STDOUT_FILENO);
+  // The live view: by default, and with --count, when stdout is a terminal.
+  const bool ansi = !plain && !once && rates_s <= 0.0 && ::isatty(STDOUT_FILENO);
+  // Periodic reports: the live view, the default mode, or --count with --interval.
+  const bool periodic = ansi || !batch || (count > 0 && interval_s > 0.0);
+  if (interval_s <= 0.0) interval_s = ansi ? 0.2 : 1.0;
+  const auto interval =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval_s));
 
   lcm::LCM lcm(lcm_settings.url);
   if (!lcm.good()) {
@@ -248,19 +271,16 @@ int main(int argc, char** argv) {
       std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);
       return 1;
     }
-    if (!batch && now >= next_draw) {
+    const bool anything = monitor.estimates().count > 0 || monitor.statuses().count > 0;
+    if (periodic && now >= next_draw && (ansi || anything)) {
       const std::string text = monitor.report(lcm_settings.url);
       if (ansi) {
-        // Home, each line cleared to its end, then clear whatever is below.
-        std::string screen = "\x1b[H";
-        for (char c : text) screen += c == '\n' ? std::string("\x1b[K\n") : std::string(1, c);
-        screen += "\x1b[J";
-        std::fputs(screen.c_str(), stdout);
+        redraw(text);
       } else {
         std::fputs((text + "\n").c_str(), stdout);
       }
       std::fflush(stdout);
-      next_draw = now + (ansi ? std::chrono::milliseconds(200) : std::chrono::seconds(1));
+      next_draw = now + interval;
     }
   }
   if (rates_s > 0.0) {
@@ -274,6 +294,10 @@ int main(int argc, char** argv) {
         e.count > 0 && s.count > 0 && e.nonfinite_fields == 0 && s.nonfinite_fields == 0;
     return ok ? 0 : 1;
   }
-  if (batch) std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);
+  if (ansi) {
+    redraw(monitor.report(lcm_settings.url));  // the final view stays, the cursor below it
+  } else if (batch) {
+    std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);
+  }
   return 0;
 }

@@ -103,6 +103,8 @@ struct Shared {
   std::atomic<std::int64_t> state_saves{0};
   std::atomic<bool> input_ended{false};
   std::atomic<std::int64_t> late_records{0};  ///< applied after the tick they belonged to
+  /// A recording: every record stamped <= this is in the input ring (receive -> estimator).
+  std::atomic<TimeUs> pushed_through_us{INT64_MIN};
 };
 
 /// The fixed parameters of a run.
@@ -200,6 +202,8 @@ void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) 
       source.fetch(&record);
       push_input(record, shared, true);
       if (source.read(0) != svc::InputSource::Read::kRecord) break;
+      // A log in time order: every record stamped before the next one has been pushed.
+      shared.pushed_through_us.store(source.record_time_us() - 1, std::memory_order_release);
     }
     shared.input_ended.store(true, std::memory_order_release);
     return;
@@ -286,10 +290,11 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
     bool has_record = false;
     // Tick k wakes half a period after T_k, so that the records stamped up to T_k have time to
     // arrive (a recording's record stamped T_k is pushed at mono0 + k P; a live frame is read
-    // within microseconds of its kernel stamp when the receive thread is not starved). Tick k
-    // sees exactly what offline replay sees unless the receive thread lags by more than P / 2:
-    // such records are applied at the next tick and counted as late. The estimate is P / 2
-    // (5 ms at 100 Hz) later than it could be, which nothing that follows a mass needs.
+    // within microseconds of its kernel stamp when the receive thread is not starved). A
+    // recording's tick also waits for a lagging receive thread, so it sees exactly what offline
+    // replay sees; a live frame read more than P / 2 after its stamp is applied at the next tick
+    // and counted as late. The estimate is P / 2 (5 ms at 100 Hz) later than it could be, which
+    // nothing that follows a mass needs.
     const std::int64_t offset_ns = plan.period_ns / 2;
     TimeUs previous_t = INT64_MIN;
     while (!shared.stop.load(std::memory_order_relaxed)) {
@@ -298,6 +303,16 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
       const std::int64_t wake = mono_ns();
       stats.on_wake(deadline, wake);
       const TimeUs t = plan.tick_time(k);
+      if (plan.recorded) {
+        // A recording: wait until the receive thread has pushed every record stamped <= T_k
+        // (it is due P / 2 earlier; this waits only when it lags), so that tick k sees exactly
+        // what offline replay sees at any speed. The wait counts in the tick's compute time.
+        while (shared.pushed_through_us.load(std::memory_order_acquire) < t &&
+               !shared.input_ended.load(std::memory_order_acquire) &&
+               !shared.stop.load(std::memory_order_relaxed)) {
+          std::this_thread::sleep_for(std::chrono::microseconds(50));
+        }
+      }
       // Read before draining: once it is set, every record is in the ring.
       const bool ended = plan.recorded && shared.input_ended.load(std::memory_order_acquire);
       // Fold the records received since the last tick into the table; records stamped after

@@ -17,9 +17,10 @@
 // itself and ticks in log time (T_k = T_0 + k / tick_rate), applying every record stamped <= T_k
 // before tick k and stopping after the last record, exactly as vmass-replay (TickResampler for
 // --samples, its SignalTable loop for --log) does, so both give bit-identical estimates. At a
-// finite speed the estimator also holds back a recording's records stamped after its tick, so
-// real-speed replay sees what offline replay sees unless the receive thread lags by more than
-// half a period. The publisher SPSC queue then applies back-pressure instead of dropping.
+// finite speed tick k applies the records stamped <= T_k (later ones wait for their tick) and
+// waits, when the receive thread lags, until all of them are in the ring: a replay at any speed
+// gives the offline estimates too, as long as no tick is skipped after a stall of over 1 s.
+// With `--speed max` the publisher SPSC queue applies back-pressure instead of dropping.
 //
 // After start-up the estimator thread allocates nothing (fixed-size records, SPSC rings,
 // seqlocks, the SignalTable's preallocated terms); the receive thread allocates only in the file
