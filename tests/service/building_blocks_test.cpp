@@ -14,6 +14,7 @@
 #include "vmass/service/service_config.hpp"
 #include "vmass/service/spsc_queue.hpp"
 #include "vmass/service/tick_stats.hpp"
+#include "vmass/signals/signal_mapping.hpp"
 
 namespace vmass::service {
 namespace {
@@ -232,7 +233,14 @@ TEST(ServiceConfig, TheShippedExampleConfigIsValid) {
   ASSERT_TRUE(c.ok()) << c.error;
   const ServiceSettingsLoad r = load_service_settings(*c.config);
   ASSERT_TRUE(r.ok()) << r.error;
-  EXPECT_EQ(r.settings.dbc_path, std::string(VMASS_SOURCE_DIR) + "/config/vehicle.dbc");
+  EXPECT_EQ(r.settings.dbc_path, std::string(VMASS_SOURCE_DIR) + "/config/demo_vehicle.dbc");
+  // Its can: section maps every estimator input on the demo vehicle's DBC.
+  const signals::CanInputsLoad can = signals::load_can_inputs(*c.config);
+  ASSERT_TRUE(can.ok()) << can.error;
+  for (int i = 0; i < kInputCount; ++i) {
+    EXPECT_NE(can.inputs->mapping.find(static_cast<Input>(i)), nullptr)
+        << input_name(static_cast<Input>(i));
+  }
 }
 
 }  // namespace

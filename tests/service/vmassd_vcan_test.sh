@@ -12,23 +12,26 @@
 #    is down, run with every input valid again after it is up, and decode every frame. Its
 #    estimates must match vmass-replay --log:
 #      a. on the recorded bus traffic, put on the daemon's own tick grid (tick k = row k): at
-#         every tick |mass difference| <= 0.5 x the daemon's published mass_std_kg, and fewer
-#         than 2 % of the frames applied late;
+#         every tick |mass difference| <= 0.5 x the daemon's published mass_std_kg against the
+#         nearest of replay ticks k-1..k+1, the final mass within 0.25 std, and fewer than 2 %
+#         of the frames applied late;
 #      b. on the original 60 s log: the final mass within 1 %.
 #    Why not bit for bit: frame timing differs. canplayer sends each frame at its log time plus
-#    its own scheduling delay (ms in the emulated VM), then vmassd ticks on its own grid, so a
+#    its own scheduling delay (ms in the emulated VM), and vmassd ticks on its own grid, so a
 #    frame lands in another tick than in the original log: that is (b), where the 1.5 s gap of
-#    the down/up also drops the pairs it would have made; observed 0.01-0.13 %, the paper's
-#    errors are a few %. Comparing on the recorded traffic (a) removes that, and what remains
-#    is (i) records the receive thread reads more than half a period after their kernel stamp
-#    (a starved thread: the VM is emulated, p99 wake-up jitter ~15 ms there), which the daemon
-#    applies one tick late and counts ("input records late": 8 to 242 of 33600 in our runs), and
-#    (ii) the daemon's re-stamp of a live frame into its tick clock differs from the kernel
-#    stamp candump logs by microseconds, which moves a frame lying that close to a tick
-#    boundary to the neighbouring tick. Each changes one differenced pair a little; observed
-#    worst |dm| 0.04-0.21 std (0.3-2.9 kg), median 0-0.07 std over 4 runs. The bound 0.5 std: the
-#    daemon and the offline replay never disagree by a meaningful part of the estimate's own
-#    uncertainty.
+#    the down/up also drops the pairs it would have made (observed 0.01-0.33 %; the paper's
+#    errors are a few %). Comparing on the recorded traffic (a) removes that; what remains is
+#    (i) frames the receive thread reads more than half a period after their kernel stamp (a
+#    starved thread: the VM is emulated, p99 wake-up jitter 3-18 ms there), which the daemon
+#    applies one tick late and counts ("input records late": 0 to 242 of 33600 in our runs),
+#    and (ii) the daemon's re-stamp of a live frame into its tick clock, which differs from the
+#    kernel stamp candump logs by the width of a clock-reading bracket (microseconds; more when
+#    the thread is preempted inside it), and moves a frame lying that close to a tick boundary
+#    to the neighbouring tick. Either can move an event (a pair, a completed Bayes batch) by a
+#    tick, hence the k-1..k+1 window. Observed worst 0.000-0.038 std with the tightest-bracket
+#    re-stamp (0.32 std on the same tick only), final within 0.002 std; before it (one clock
+#    pair per frame) up to 0.60 std on the same tick. The bound 0.5 std: daemon and offline
+#    replay never disagree by a meaningful part of the estimate's own uncertainty.
 # SIGTERM stops vmassd with exit 0 in both phases.
 #
 #   vmassd_vcan_test.sh VCAN_VM VMASSD PRIUS_DBC PYTHON_TYPES_DIR VMASS_SIM VMASS_REPLAY
@@ -252,29 +255,36 @@ else:
     if not any(s.state_name == "running" and all(s.input_valid) for s in after):
         fails.append("not running with every input valid after vcan0 came back")
 
-# a. Tick by tick against vmass-replay on the recorded traffic, on the daemon's grid.
+# a. Tick by tick against vmass-replay on the recorded traffic, on the daemon's grid. A record
+# that lands in the neighbouring tick can move an event (a pair, a completed Bayes batch) by one
+# tick, so each daemon tick is compared with the nearest of replay ticks k-1, k, k+1.
 by_tick = {e.tick: e for e in estimates}
-compared, worst, ratios = 0, (0.0, 0.0, -1), []
+compared, worst, worst_same, ratios = 0, (0.0, 0.0, -1), 0.0, []
 for k, row in enumerate(aligned):
     e = by_tick.get(k)
     if e is None or not e.mass_known: continue
     compared += 1
-    dm = abs(e.mass_kg - float(row["mass_kg"]))
-    ratio = dm / max(e.mass_std_kg, 1e-9)
-    ratios.append(ratio)
-    if ratio > worst[0]: worst = (ratio, dm, k)
+    near = [float(aligned[j]["mass_kg"]) for j in (k - 1, k, k + 1) if 0 <= j < len(aligned)]
+    dm = min(abs(e.mass_kg - m) for m in near)
+    std = max(e.mass_std_kg, 1e-9)
+    worst_same = max(worst_same, abs(e.mass_kg - float(row["mass_kg"])) / std)
+    ratios.append(dm / std)
+    if dm / std > worst[0]: worst = (dm / std, dm, k)
 ratios.sort()
 final_k = len(aligned) - 1
 fe = by_tick.get(final_k)
+final_ratio = abs(fe.mass_kg - float(aligned[-1]["mass_kg"])) / fe.mass_std_kg if fe else 1e9
 print("a. recorded traffic: %d ticks compared; |dm| / std median %.3f, worst %.3f (%.3f kg at "
-      "tick %d); final: daemon %.3f kg, vmass-replay %s kg; pairs daemon %d/%d, replay %s/%s"
+      "tick %d; same tick only: %.3f); final: daemon %.3f kg, vmass-replay %s kg (%.3f std); "
+      "pairs daemon %d/%d, replay %s/%s"
       % (compared, ratios[len(ratios) // 2] if ratios else float("nan"), worst[0], worst[1],
-         worst[2], fe.mass_kg if fe else float("nan"), aligned[-1]["mass_kg"],
-         fe.longitudinal_accepted if fe else -1, fe.lateral_accepted if fe else -1,
+         worst[2], worst_same, fe.mass_kg if fe else float("nan"), aligned[-1]["mass_kg"],
+         final_ratio, fe.longitudinal_accepted if fe else -1, fe.lateral_accepted if fe else -1,
          aligned[-1]["longitudinal_pairs"], aligned[-1]["lateral_pairs"]))
 if compared < 4000: fails.append("only %d ticks compared" % compared)
 if worst[0] > 0.5:
     fails.append("tick %d differs by %.3f kg = %.2f std > 0.5 std" % (worst[2], worst[1], worst[0]))
+if final_ratio > 0.25: fails.append("final mass differs by %.2f std > 0.25 std" % final_ratio)
 
 # b. Final mass against vmass-replay on the original 60 s log.
 final_d = [e for e in estimates if e.mass_known][-1].mass_kg

@@ -129,8 +129,6 @@ struct Plan {
     }
     return t0_us + k * tick_us;
   }
-  /// The tick clock now: T_0 + CLOCK_MONOTONIC since tick 0 (live input).
-  TimeUs tick_clock_now_us() const { return t0_us + (mono_ns() - mono0_ns) / 1000; }
 };
 
 void apply_realtime(const svc::RealtimeSettings& rt) {
@@ -174,15 +172,37 @@ void push_input(const svc::InputRecord& record, Shared& shared, bool block) {
   }
 }
 
-/// A live frame's time in the tick clock: when it was read, on the tick clock, less how long it
-/// waited in the kernel (CLOCK_REALTIME now minus its kernel stamp). A wait outside [0, 1 s]
-/// means the wall clock was stepped (or the frame has no stamp): taken as 0. So the inputs'
-/// ages and timeouts never depend on CLOCK_REALTIME steps, which are common on a vehicle PC
-/// that sets its clock after boot (GNSS, NTP).
+/// CLOCK_REALTIME and CLOCK_MONOTONIC read together: the pair of the tightest of up to three
+/// realtime-monotonic-realtime brackets (a preemption between two reads would skew it).
+struct ClockPair {
+  TimeUs realtime_us = 0;
+  std::int64_t mono_ns = 0;
+};
+ClockPair read_clocks() {
+  ClockPair best;
+  TimeUs best_width = INT64_MAX;
+  for (int i = 0; i < 3 && best_width > 20; ++i) {
+    const TimeUs rt1 = realtime_us();
+    const std::int64_t mono = mono_ns();
+    const TimeUs rt2 = realtime_us();
+    if (rt2 - rt1 < best_width) {
+      best_width = rt2 - rt1;
+      best = ClockPair{rt1 + (rt2 - rt1) / 2, mono};
+    }
+  }
+  return best;
+}
+
+/// A live frame's time in the tick clock: its kernel stamp (CLOCK_REALTIME) moved by the tick
+/// clock's offset from CLOCK_REALTIME now. A stamp older than 1 s or in the future means the
+/// wall clock was stepped (or the frame has no stamp): then the time it was read. So the
+/// inputs' ages and timeouts never depend on CLOCK_REALTIME steps, which are common on a
+/// vehicle PC that sets its clock after boot (GNSS, NTP).
 TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan) {
-  const TimeUs read_at = plan.tick_clock_now_us();
-  const TimeUs waited = realtime_us() - kernel_stamp_us;
-  return (waited >= 0 && waited <= 1'000'000) ? read_at - waited : read_at;
+  const ClockPair now = read_clocks();
+  const TimeUs tick_clock_us = plan.t0_us + (now.mono_ns - plan.mono0_ns) / 1000;
+  const TimeUs waited = now.realtime_us - kernel_stamp_us;
+  return (waited >= 0 && waited <= 1'000'000) ? tick_clock_us - waited : tick_clock_us;
 }
 
 void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) {
@@ -634,7 +654,8 @@ int run(const Options& options) {
   if (!plan.recorded) {
     // Live: T_0 is CLOCK_REALTIME at tick 0, so the tick clock reads as the wall clock did at
     // start (and live frames' times are their kernel stamps, give or take a few microseconds).
-    plan.t0_us = realtime_us() + (plan.mono0_ns - mono_ns()) / 1000;
+    const ClockPair now = read_clocks();
+    plan.t0_us = now.realtime_us + (plan.mono0_ns - now.mono_ns) / 1000;
   }
   std::thread publisher_worker(publisher_thread, std::ref(publisher), std::ref(shared),
                                std::cref(ctx), settings.lcm.status_period_s);
