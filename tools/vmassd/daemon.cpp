@@ -261,7 +261,7 @@ void publish_record(const svc::TickRecord& record, Shared& shared, bool block) {
 
 void after_tick(const svc::TickRecord& record, svc::EstimatorLoop& loop, Shared& shared,
                 const Plan& plan, svc::TickStats& stats, std::int64_t k) {
-  publish_record(record, shared, plan.max_speed);
+  publish_record(record, shared, plan.recorded);
   shared.latest.write(record);
   shared.heartbeat.store(k + 1, std::memory_order_release);
   if (k % plan.snapshot_every_ticks == 0) {
@@ -323,34 +323,43 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
       const std::int64_t wake = mono_ns();
       stats.on_wake(deadline, wake);
       const TimeUs t = plan.tick_time(k);
+      // Fold the records received since the last tick into the table; records stamped after
+      // this tick wait for their own (as in offline replay: tick k sees exactly the records
+      // stamped <= T_k). Live records are stamped in the tick clock, so a record is held for
+      // one tick at most.
+      auto drain = [&] {
+        for (;;) {
+          if (!has_held) {
+            if (!shared.inputs.pop(&held)) return;
+            has_held = true;
+          }
+          if (held.time_us > t) return;
+          if (held.time_us <= previous_t) {
+            shared.late_records.fetch_add(1, std::memory_order_relaxed);
+          }
+          source.apply(held);
+          has_held = false;
+          if (!has_record || held.time_us > last_record_us) last_record_us = held.time_us;
+          has_record = true;
+        }
+      };
+      drain();
       if (plan.recorded) {
         // A recording: wait until the receive thread has pushed every record stamped <= T_k
         // (it is due P / 2 earlier; this waits only when it lags), so that tick k sees exactly
-        // what offline replay sees at any speed. The wait counts in the tick's compute time.
-        while (shared.pushed_through_us.load(std::memory_order_acquire) < t &&
+        // what offline replay sees at any speed; drain meanwhile, so that a full ring cannot
+        // block the receive thread. A held record (stamped after T_k) means they all came.
+        // The wait counts in the tick's compute time.
+        while (!has_held && shared.pushed_through_us.load(std::memory_order_acquire) < t &&
                !shared.input_ended.load(std::memory_order_acquire) &&
                !shared.stop.load(std::memory_order_relaxed)) {
           std::this_thread::sleep_for(std::chrono::microseconds(50));
+          drain();
         }
       }
-      // Read before draining: once it is set, every record is in the ring.
+      // Read before the last drain: once it is set, every record is in the ring.
       const bool ended = plan.recorded && shared.input_ended.load(std::memory_order_acquire);
-      // Fold the records received since the last tick into the table; records stamped after
-      // this tick wait for their own (as in offline replay: tick k sees exactly the records
-      // stamped <= T_k that have arrived). Live records are stamped in the tick clock, so a
-      // record is held for one tick at most.
-      for (;;) {
-        if (!has_held) {
-          if (!shared.inputs.pop(&held)) break;
-          has_held = true;
-        }
-        if (held.time_us > t) break;
-        if (held.time_us <= previous_t) shared.late_records.fetch_add(1, std::memory_order_relaxed);
-        source.apply(held);
-        has_held = false;
-        if (!has_record || held.time_us > last_record_us) last_record_us = held.time_us;
-        has_record = true;
-      }
+      drain();
       // A finished recording: tick up to its last record, as offline replay does.
       if (ended && !has_held && (!has_record || t > last_record_us)) break;
       const svc::TickRecord& record = loop.tick(k, t, source);
@@ -360,9 +369,11 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
       const std::int64_t next_deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
       stats.on_done(done - wake, done > next_deadline);
       after_tick(record, loop, shared, plan, stats, k - 1);
-      // A long stall (suspend, debugger): give the missed ticks up, counted, after 1 s.
+      // A live bus after a long stall (suspend, debugger): give the missed ticks up, counted,
+      // after 1 s. A recording never skips: a replay the machine cannot keep up with runs late
+      // (overruns counted) and still gives the offline estimates.
       const std::int64_t behind = (mono_ns() - next_deadline) / plan.period_ns;
-      if (behind > max_behind_ticks) {
+      if (!plan.recorded && behind > max_behind_ticks) {
         k += behind;
         stats.on_skipped(behind);
       }

@@ -18,9 +18,10 @@
 // before tick k and stopping after the last record, exactly as vmass-replay (TickResampler for
 // --samples, its SignalTable loop for --log) does, so both give bit-identical estimates. At a
 // finite speed tick k applies the records stamped <= T_k (later ones wait for their tick) and
-// waits, when the receive thread lags, until all of them are in the ring: a replay at any speed
-// gives the offline estimates too, as long as no tick is skipped after a stall of over 1 s.
-// With `--speed max` the publisher SPSC queue applies back-pressure instead of dropping.
+// waits, when the receive thread lags, until all of them are in the ring (a replay skips no
+// tick; one the machine cannot keep up with runs late): a replay at any speed gives the offline
+// estimates too, all of them: for a recording the publisher SPSC queue applies back-pressure
+// instead of dropping (a live bus's estimates are dropped, counted, when it is full).
 //
 // After start-up the estimator thread allocates nothing (fixed-size records, SPSC rings,
 // seqlocks, the SignalTable's preallocated terms); the receive thread allocates only in the file
