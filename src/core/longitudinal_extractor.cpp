@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "vmass/core/param_check.hpp"
 
@@ -23,13 +22,10 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
                                              const DifferencingParams& differencing)
     : vehicle_(vehicle),
       params_(params),
-      differencing_(differencing),
-      steps_(differencing.steps()),
-      tick_us_(from_seconds(1.0 / differencing.tick_rate_hz)),
       accel_x_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       accel_y_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       force_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
-      history_(static_cast<std::size_t>(steps_) + 1) {}
+      history_(differencing) {}
 
 void LongitudinalExtractor::reset() {
   history_.clear();
@@ -72,17 +68,9 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
                    s.speed_mps,
                    s.gear,
                    s.has(Input::kGear)};
-  history_.push(now);
-  if (history_.size() <= static_cast<std::size_t>(steps_)) {
-    out.verdict = PairVerdict::kWarmingUp;
-    return out;
-  }
-  const Record& then = history_.ago(static_cast<std::size_t>(steps_));
-  const TimeUs expected_us = from_seconds(differencing_.differencing_dt_s);
-  if (std::llabs((now.time_us - then.time_us) - expected_us) > tick_us_ / 2) {
-    out.verdict = PairVerdict::kTimeGap;
-    return out;
-  }
+  const Record* then_ptr = history_.push_and_get_then(now, &out.verdict);
+  if (then_ptr == nullptr) return out;
+  const Record& then = *then_ptr;
   if (std::max(std::abs(now.accel_y_mps2), std::abs(then.accel_y_mps2)) >=
       params_.max_abs_accel_y_mps2) {
     out.verdict = PairVerdict::kLateralAccel;

@@ -17,7 +17,7 @@
 
 #include <string>
 
-#include "vmass/core/delay_line.hpp"
+#include "vmass/core/differencing_history.hpp"
 #include "vmass/core/extraction.hpp"
 #include "vmass/core/lateral_velocity_filter.hpp"
 #include "vmass/core/low_pass_filter.hpp"
@@ -64,12 +64,10 @@ class LateralExtractor {
 
   VehicleParams vehicle_;
   LateralParams params_;
-  DifferencingParams differencing_;
-  int steps_;
   TimeUs tick_us_;
   LateralVelocityFilter velocity_filter_;
   LowPassFilter accel_y_filter_, force_filter_;
-  DelayLine<Record> history_;
+  DifferencingHistory<Record> history_;
   bool has_last_time_ = false;
   TimeUs last_time_us_ = 0;
 };

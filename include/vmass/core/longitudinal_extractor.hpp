@@ -18,7 +18,7 @@
 
 #include <string>
 
-#include "vmass/core/delay_line.hpp"
+#include "vmass/core/differencing_history.hpp"
 #include "vmass/core/extraction.hpp"
 #include "vmass/core/low_pass_filter.hpp"
 #include "vmass/core/sample.hpp"
@@ -63,11 +63,8 @@ class LongitudinalExtractor {
 
   VehicleParams vehicle_;
   LongitudinalParams params_;
-  DifferencingParams differencing_;
-  int steps_;
-  TimeUs tick_us_;
   LowPassFilter accel_x_filter_, accel_y_filter_, force_filter_;
-  DelayLine<Record> history_;
+  DifferencingHistory<Record> history_;
 };
 
 }  // namespace vmass
