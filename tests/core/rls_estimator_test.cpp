@@ -13,6 +13,8 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "regression_test_data.hpp"
+
 namespace vmass {
 namespace {
 
@@ -27,27 +29,11 @@ MassPrior test_prior() {
   return p;
 }
 
-RegressionPair make_pair(double y, double da, double w) {
-  RegressionPair p;
-  p.y_n = y;
-  p.delta_accel_mps2 = da;
-  p.weight = w;
-  return p;
-}
+using testing::make_pair;
 
 std::vector<RegressionPair> synthetic_pairs(int n, double mass, double mu, double sigma,
                                             std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> da_dist(0.2, 1.0);
-  std::uniform_real_distribution<double> w_dist(0.5, 2.0);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  std::vector<RegressionPair> pairs;
-  for (int i = 0; i < n; ++i) {
-    const double da = da_dist(rng);
-    const double w = w_dist(rng);
-    pairs.push_back(make_pair(mass * da + mu + sigma / std::sqrt(w) * unit(rng), da, w));
-  }
-  return pairs;
+  return testing::synthetic_pairs(n, mass, mu, sigma, seed, 0.2, 1.0);
 }
 
 struct BatchSolution {
