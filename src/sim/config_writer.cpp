@@ -10,7 +10,7 @@
 
 namespace vmass::sim {
 
-ConfigValues make_config_values(const VehicleParams& v, const MassProperties& loaded,
+ConfigValues make_config_values(const TrueVehicle& v, const MassProperties& loaded,
                                 double tick_rate_hz, const CalibrationErrors& errors) {
   ConfigValues c;
   c.empty_mass_kg = v.empty.mass_kg;
@@ -125,7 +125,7 @@ void write_config_yaml(std::ostream& os, const ConfigValues& c,
 
 std::string write_config_file(const SimulationResult& result, const std::string& dir,
                               const CalibrationErrors& errors) {
-  const VehicleParams& v = result.vehicle;
+  const TrueVehicle& v = result.vehicle;
   const ConfigValues c = make_config_values(v, result.initial_mass, result.tick_rate_hz, errors);
   const double true_c = v.rear_right_suspension.stiffness_n_per_m;
   std::vector<std::string> header = {

@@ -43,7 +43,7 @@ std::string DriverParams::validate() const {
 }
 
 Driver::Driver(const DriverParams& params, const DriverProfile& profile,
-               const VehicleParams& vehicle)
+               const TrueVehicle& vehicle)
     : p_(params), profile_(profile), vehicle_(vehicle) {}
 
 void Driver::reset(double t_s, const VehicleState& s) {

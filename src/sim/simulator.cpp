@@ -59,7 +59,7 @@ std::string simulate(const Scenario& scenario, const SimulationOptions& options,
   if (out == nullptr) return "simulate: no result to fill";
   if (auto m = scenario.validate(); !m.empty()) return "scenario " + scenario.name + ": " + m;
 
-  const VehicleParams& vp = scenario.vehicle;
+  const TrueVehicle& vp = scenario.vehicle;
   const double tick_hz = scenario.tick_rate_hz;
   const long substeps = std::lround(scenario.integration_rate_hz / tick_hz);
   const double dt = 1.0 / (tick_hz * static_cast<double>(substeps));

@@ -54,7 +54,7 @@ Scenario static_ballast_scenario(const BallastSchedule& schedule) {
 
 BallastTruth ballast_truth(const SimulationResult& result, const BallastSchedule& schedule) {
   BallastTruth t;
-  const VehicleParams& v = result.vehicle;
+  const TrueVehicle& v = result.vehicle;
   const SuspensionParams& sp = v.rear_right_suspension;
   const ChannelSpec& sensor = result.sensors.rear_right_deflection_m;
   const StaticLoads empty = static_loads(v, v.empty);

@@ -71,7 +71,7 @@ struct Loads {
   double front_axle, rear_axle, fl, fr, rl, rr;
 };
 
-Loads wheel_loads(const VehicleParams& p, const MassProperties& m, double grade, double ax,
+Loads wheel_loads(const TrueVehicle& p, const MassProperties& m, double grade, double ax,
                   double ay) {
   const double g = p.gravity_mps2;
   const double l = p.wheelbase_m;
@@ -93,13 +93,13 @@ Loads wheel_loads(const VehicleParams& p, const MassProperties& m, double grade,
   return w;
 }
 
-double corner_sprung_mass_kg(const VehicleParams& p, const MassProperties& m) {
+double corner_sprung_mass_kg(const TrueVehicle& p, const MassProperties& m) {
   const StaticLoads s = static_loads(p, m);
   const double sprung = s.rear_right_n / p.gravity_mps2 - p.rear_right_suspension.unsprung_mass_kg;
   return std::max(20.0, sprung);
 }
 
-Vec derivatives(const VehicleParams& p, const Road& road, const Vec& x, bool stopped,
+Vec derivatives(const TrueVehicle& p, const Road& road, const Vec& x, bool stopped,
                 const VehicleInputs& in, VehicleOutputs* out) {
   const MassProperties& m = in.mass;
   const double g = p.gravity_mps2;
@@ -189,7 +189,7 @@ Vec derivatives(const VehicleParams& p, const Road& road, const Vec& x, bool sto
 }
 
 // Force along x that would move a car at rest, without brakes or rolling resistance.
-double push_force_at_rest(const VehicleParams& p, const Road& road, const VehicleState& s,
+double push_force_at_rest(const TrueVehicle& p, const Road& road, const VehicleState& s,
                           const VehicleInputs& in) {
   return in.wheel_torque_nm / p.wheel_radius_m -
          in.mass.mass_kg * p.gravity_mps2 * std::sin(road.grade_at(s.distance_m));
@@ -197,7 +197,7 @@ double push_force_at_rest(const VehicleParams& p, const Road& road, const Vehicl
 
 }  // namespace
 
-VehicleModel::VehicleModel(const VehicleParams& params, const Road& road)
+VehicleModel::VehicleModel(const TrueVehicle& params, const Road& road)
     : p_(params), road_(road) {}
 
 VehicleState VehicleModel::settled_state(const VehicleInputs& in, double speed_mps) const {

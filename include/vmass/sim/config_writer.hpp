@@ -62,7 +62,7 @@ struct ConfigValues {
 };
 
 /// What the team's config says about a car with true parameters `vehicle`, loaded as `loaded`.
-ConfigValues make_config_values(const VehicleParams& vehicle, const MassProperties& loaded,
+ConfigValues make_config_values(const TrueVehicle& vehicle, const MassProperties& loaded,
                                 double tick_rate_hz, const CalibrationErrors& errors = {});
 
 /// The YAML text; header_comment lines (without '#') go on top.

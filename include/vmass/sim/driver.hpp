@@ -74,7 +74,7 @@ struct DriverCommand {
 class Driver {
  public:
   /// vehicle: used for the nominal resistance feed-forward and the steering geometry.
-  Driver(const DriverParams& params, const DriverProfile& profile, const VehicleParams& vehicle);
+  Driver(const DriverParams& params, const DriverProfile& profile, const TrueVehicle& vehicle);
 
   /// Set the controller states for a car starting in state s at time t_s (no integrator wind,
   /// holding pressure if standing).
@@ -89,7 +89,7 @@ class Driver {
 
   DriverParams p_;
   DriverProfile profile_;
-  VehicleParams vehicle_;
+  TrueVehicle vehicle_;
   double speed_integral_ = 0.0;
   double brake_pressure_pa_ = 0.0;
   double radial_integral_ = 0.0;

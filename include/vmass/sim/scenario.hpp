@@ -19,7 +19,7 @@
 #include "vmass/sim/mass_properties.hpp"
 #include "vmass/sim/road.hpp"
 #include "vmass/sim/sensor_model.hpp"
-#include "vmass/sim/vehicle_params.hpp"
+#include "vmass/sim/true_vehicle.hpp"
 
 namespace vmass::sim {
 
@@ -38,7 +38,7 @@ struct Scenario {
   double tick_rate_hz = 100.0;          ///< output (CAN) rate
   double integration_rate_hz = 1000.0;  ///< a multiple of tick_rate_hz
   double initial_speed_mps = 0.0;       ///< 0: start standing
-  VehicleParams vehicle;
+  TrueVehicle vehicle;
   std::vector<LoadItem> initial_payload;  ///< on top of vehicle.empty
   std::vector<LoadChange> load_changes;
   Road road;

@@ -69,7 +69,7 @@ struct SimulationResult {
   std::string scenario;
   std::uint64_t seed = 0;
   NoiseSet noise = NoiseSet::kNone;
-  VehicleParams vehicle;
+  TrueVehicle vehicle;
   SensorSpec sensors;  ///< as applied (ideal() when ideal_sensors)
   MassProperties initial_mass;
   double tick_rate_hz = 100.0;

@@ -34,7 +34,7 @@
 
 #include "vmass/sim/mass_properties.hpp"
 #include "vmass/sim/road.hpp"
-#include "vmass/sim/vehicle_params.hpp"
+#include "vmass/sim/true_vehicle.hpp"
 
 namespace vmass::sim {
 
@@ -86,7 +86,7 @@ struct VehicleOutputs {
 
 class VehicleModel {
  public:
-  VehicleModel(const VehicleParams& params, const Road& road);
+  VehicleModel(const TrueVehicle& params, const Road& road);
 
   /// A state with the suspension and load transfer at rest: standing (speed 0) or driving
   /// straight at speed_mps, at the start of the road, heading along +x.
@@ -98,11 +98,11 @@ class VehicleModel {
   /// Forces and accelerations at s.
   VehicleOutputs evaluate(const VehicleState& s, const VehicleInputs& in) const;
 
-  const VehicleParams& params() const { return p_; }
+  const TrueVehicle& params() const { return p_; }
   const Road& road() const { return road_; }
 
  private:
-  VehicleParams p_;
+  TrueVehicle p_;
   Road road_;
 };
 

@@ -1,10 +1,10 @@
-#include "vmass/sim/vehicle_params.hpp"
+#include "vmass/sim/true_vehicle.hpp"
 
 #include <cmath>
 
 namespace vmass::sim {
 
-std::string VehicleParams::validate() const {
+std::string TrueVehicle::validate() const {
   if (auto m = empty.validate("vehicle.empty."); !m.empty()) return m;
   if (!(wheelbase_m > 0.5)) return "vehicle.wheelbase_m must be > 0.5";
   if (!(empty.cg_x_m > 0.0 && empty.cg_x_m < wheelbase_m)) {
@@ -38,7 +38,7 @@ std::string VehicleParams::validate() const {
   return "";
 }
 
-StaticLoads static_loads(const VehicleParams& v, const MassProperties& m) {
+StaticLoads static_loads(const TrueVehicle& v, const MassProperties& m) {
   const double w = m.mass_kg * v.gravity_mps2;
   const double l = v.wheelbase_m;
   StaticLoads s;
@@ -52,7 +52,7 @@ StaticLoads static_loads(const VehicleParams& v, const MassProperties& m) {
   return s;
 }
 
-AxleCorneringStiffness static_cornering_stiffness(const VehicleParams& v, const MassProperties& m) {
+AxleCorneringStiffness static_cornering_stiffness(const TrueVehicle& v, const MassProperties& m) {
   const StaticLoads s = static_loads(v, m);
   AxleCorneringStiffness c;
   c.front_n_per_rad = wheel_cornering_stiffness(v.front_tyre, s.front_left_n) +

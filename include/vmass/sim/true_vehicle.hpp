@@ -1,4 +1,4 @@
-// VehicleParams: the TRUE parameters of the simulated car (a front-wheel-drive hybrid SUV of
+// TrueVehicle: the TRUE parameters of the simulated car (a front-wheel-drive hybrid SUV of
 // about 1.5 t empty). The config.yaml that vmass-sim writes is derived from these (see
 // config_writer.hpp for which values it copies exactly and which carry a calibration error).
 //
@@ -14,7 +14,7 @@
 
 namespace vmass::sim {
 
-struct VehicleParams {
+struct TrueVehicle {
   /// Empty car (the M_idle of eq. 3): 1500 kg, l_f 1.20 m, CG 0.55 m high.
   MassProperties empty{1500.0, 1.20, 0.0, 0.55, 2400.0};
   double wheelbase_m = 2.70;            ///< l
@@ -47,7 +47,7 @@ struct StaticLoads {
   double rear_left_n = 0.0;
   double rear_right_n = 0.0;
 };
-StaticLoads static_loads(const VehicleParams& v, const MassProperties& m);
+StaticLoads static_loads(const TrueVehicle& v, const MassProperties& m);
 
 /// Small-slip cornering stiffness of each axle at the static loads of m, N/rad (what the
 /// estimator's C_alpha_f, C_alpha_r stand for).
@@ -55,6 +55,6 @@ struct AxleCorneringStiffness {
   double front_n_per_rad = 0.0;
   double rear_n_per_rad = 0.0;
 };
-AxleCorneringStiffness static_cornering_stiffness(const VehicleParams& v, const MassProperties& m);
+AxleCorneringStiffness static_cornering_stiffness(const TrueVehicle& v, const MassProperties& m);
 
 }  // namespace vmass::sim
