@@ -174,6 +174,51 @@ TEST_P(PipelineTest, DrivingBeforeAnyStandstillStartsFromTheEmptyMass) {
   EXPECT_NEAR(r.estimates.back().mass_kg, drive.mass_kg, 0.01 * drive.mass_kg);
 }
 
+TEST_P(PipelineTest, FlushPutsEveryAcceptedPairIntoTheEstimate) {
+  // Given a drive that ends with a Bayes batch open, when the pipeline is flushed, then the
+  // estimate uses every accepted pair (RLS: it already does; flush changes nothing).
+  const PipelineParams p = params(GetParam());
+  testing::LongitudinalDrive drive;
+  drive.force_noise_std_n = 30.0;
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  std::vector<Sample> samples = testing::standstill_samples(0.0, 5.0, z);
+  append(&samples, testing::longitudinal_samples(drive, p.vehicle, 5.0, 40.0, 10.0, z));
+  Pipeline pipeline(p);
+  const DriveRun r = run(pipeline, samples);
+  const Estimate before = r.estimates.back();
+  const long accepted = before.blocks[0].accepted + before.blocks[1].accepted;
+  ASSERT_GT(accepted, 0);
+  const bool changed = pipeline.flush();
+  const Estimate& after = pipeline.estimate();
+  EXPECT_EQ(after.pairs_used, accepted);
+  EXPECT_EQ(after.time_us, before.time_us);
+  if (GetParam() == RegressorType::kRls) {
+    EXPECT_FALSE(changed);
+    EXPECT_EQ(after.mass_kg, before.mass_kg);
+  } else {
+    ASSERT_NE(accepted % p.estimator.bayes.batch_size, 0) << "the drive must end mid-batch";
+    EXPECT_TRUE(changed);
+    EXPECT_LT(before.pairs_used, accepted);
+  }
+  EXPECT_FALSE(pipeline.flush());
+}
+
+TEST_P(PipelineTest, TheEstimateSaysWhereItsPriorCameFrom) {
+  const PipelineParams p = params(GetParam());
+  testing::LongitudinalDrive drive;
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  std::vector<Sample> samples = testing::standstill_samples(0.0, 5.0, z);
+  append(&samples, testing::longitudinal_samples(drive, p.vehicle, 5.0, 10.0, 10.0, z));
+  Pipeline standing(p);
+  const DriveRun a = run(standing, samples);
+  EXPECT_EQ(a.estimates.front().prior_reason, StatusReason::kWaitingForStandstill);
+  EXPECT_EQ(a.estimates.back().prior_reason, StatusReason::kStaticInitialised);
+  Pipeline rolling(p);
+  const DriveRun b =
+      run(rolling, testing::longitudinal_samples(drive, p.vehicle, 0.0, 10.0, 10.0, z));
+  EXPECT_EQ(b.estimates.back().prior_reason, StatusReason::kNoStaticPrior);
+}
+
 INSTANTIATE_TEST_SUITE_P(BothRegressors, PipelineTest,
                          ::testing::Values(RegressorType::kRls, RegressorType::kBayes),
                          [](const auto& param_info) {

@@ -391,13 +391,22 @@ TEST_F(DaemonTest, SigkillMidDriveThenRestartResumesFromSavedState) {
 
   // Without the saved state the same drive starts from nothing.
   const std::string fresh = path("fresh.lcm");
+  const std::string fresh_state = path("fresh.state");
   ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
-                " --speed max --no-restore --lcm-url 'file://" + fresh + "?mode=w' 2> /dev/null"),
+                " --speed max --no-restore --lcm-url 'file://" + fresh + "?mode=w' --state-file " +
+                fresh_state + " 2> /dev/null"),
             0);
   const LoggedRun fresh_run = read_lcm_log(fresh);
   ASSERT_FALSE(fresh_run.estimates.empty());
   EXPECT_EQ(fresh_run.estimates.front().pairs_used, 0);
   EXPECT_FALSE(fresh_run.estimates.front().mass_known);
+  // The final save flushed the open Bayes batch: every accepted pair is in the saved belief.
+  const service::StateLoad final_state =
+      service::load_state_file(fresh_state, service::state_fingerprint(c.config->pipeline));
+  ASSERT_EQ(final_state.status, service::StateLoadStatus::kLoaded) << final_state.error;
+  const vmass::mass_estimate_t& last = fresh_run.estimates.back();
+  EXPECT_EQ(final_state.state.snapshot.pairs_used,
+            last.longitudinal_accepted + last.lateral_accepted);
 }
 
 // A bad config is refused with file:line:key and exit code 2; an unknown CLI combination too.

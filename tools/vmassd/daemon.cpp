@@ -738,7 +738,15 @@ int run(const Options& options) {
   // The estimator thread has stopped: its input table can be read here.
   const std::string input_problems = source->input_report();
   if (!input_problems.empty()) spdlog::info("inputs: {}", input_problems);
-  const bool saved = save_snapshot(state_path, shared.snapshot.read(), fingerprint, shared);
+  // So is its pipeline: the open Bayes batch enters the saved state instead of being lost.
+  SnapshotSlot final_slot = shared.snapshot.read();
+  const long pairs_before_flush = loop.pipeline().estimate().pairs_used;
+  if (final_slot.valid && loop.pipeline().flush()) {
+    final_slot.snapshot = loop.pipeline().snapshot();
+    spdlog::info("open batch flushed into the final state: pairs used {} -> {}",
+                 pairs_before_flush, loop.pipeline().estimate().pairs_used);
+  }
+  const bool saved = save_snapshot(state_path, final_slot, fingerprint, shared);
   const svc::DaemonStatus final_status = gather_status(ctx, shared, true);
   publisher.publish_status(final_status);
   spdlog::info(

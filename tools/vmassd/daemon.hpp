@@ -8,7 +8,8 @@
 //                     CAN), sample_at + Pipeline::step; TickRecord -> SpscQueue; overruns counted
 //   publisher thread  SpscQueue -> LCM (VMASS_ESTIMATE, VMASS_PAIRS); VMASS_STATUS periodically
 //   main thread       signals (sigtimedwait), sd_notify READY/STATUS/WATCHDOG/STOPPING, state
-//                     persistence, orderly shutdown (final status, final save)
+//                     persistence, orderly shutdown (final status; the pipeline flushed, so
+//                     that an open Bayes batch is not lost, then the final save)
 //
 // The input table (SignalTable) belongs to the estimator thread alone; only records (frames)
 // cross threads, through the SPSC ring, so nothing of the table is shared or locked.
