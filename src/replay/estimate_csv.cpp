@@ -17,13 +17,23 @@ std::string EstimateCsvWriter::header() {
 
 std::string EstimateCsvWriter::row(const Estimate& e) {
   // %.*f is locale-dependent only through LC_NUMERIC, which our tools never change from "C".
+  // Before the first estimate (no prior yet) the belief cells are empty: a 0 there would read
+  // as an estimate of 0 kg.
+  char mass[160] = ",,,";
+  char std_kg[32] = "";
+  char initial[32] = "";
+  if (e.has_mass()) {
+    std::snprintf(mass, sizeof mass, "%.3f,%.3f,%.3f,%.3f", e.mass_kg, e.ci_low_kg, e.ci_high_kg,
+                  e.mu_n);
+    std::snprintf(std_kg, sizeof std_kg, "%.3f", e.mass_std_kg);
+    std::snprintf(initial, sizeof initial, "%.3f", e.initial_mass_kg);
+  }
   char buf[512];
-  std::snprintf(buf, sizeof buf, "%.2f,%.3f,%.3f,%.3f,%.3f,%s,%.3f,%s,%ld,%ld,%.5f,%.5f,%.3f",
-                to_seconds(e.time_us), e.mass_kg, e.ci_low_kg, e.ci_high_kg, e.mu_n,
-                std::string(status_name(e.status)).c_str(), e.mass_std_kg,
+  std::snprintf(buf, sizeof buf, "%.2f,%s,%s,%s,%s,%ld,%ld,%.5f,%.5f,%s", to_seconds(e.time_us),
+                mass, std::string(status_name(e.status)).c_str(), std_kg,
                 std::string(reason_name(e.reason)).c_str(), e.blocks[0].accepted,
                 e.blocks[1].accepted, e.blocks[0].availability(), e.blocks[1].availability(),
-                e.initial_mass_kg);
+                initial);
   return buf;
 }
 

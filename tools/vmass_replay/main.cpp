@@ -9,7 +9,10 @@
 // SignalTable; tick k is at t0 + k / tick_rate_hz in log time (t0: the first frame's time), and
 // its Sample is SignalTable::sample_at(tick time) after every frame stamped at or before it
 // (the daemon's log replay does the same). Corrupt log lines are reported and counted, never
-// fatal. Exit codes: 0 ok, 1 write or plot failure, 2 usage, config or input error.
+// fatal. --truth is read only when given, and refused (exit 2) when its time base is not the
+// input's (Truth::check_time_base). At the end the open Bayes batch is flushed into the final
+// estimate the summary prints. Exit codes: 0 ok, 1 write or plot failure, 2 usage, config or
+// input error.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -131,7 +134,7 @@ int main(int argc, char** argv) {
   samples_opt->excludes(log_opt);
   log_opt->excludes(samples_opt);
   app.add_option("--truth", truth_path,
-                 "truth CSV (time_s,mass_kg); default: truth.csv beside the input, if any");
+                 "truth CSV (time_s,mass_kg) in the input's time base; none by default");
   app.add_option("--estimator", estimator, "override estimator.type")
       ->check(CLI::IsMember({"rls", "bayes"}));
   app.add_option("--out", out_path, "write the estimate at every tick as CSV");
@@ -155,10 +158,6 @@ int main(int argc, char** argv) {
         estimator == "rls" ? vmass::RegressorType::kRls : vmass::RegressorType::kBayes;
   }
 
-  if (truth_path.empty()) {
-    const fs::path beside = fs::path(input_path).parent_path() / "truth.csv";
-    if (fs::exists(beside)) truth_path = beside.string();
-  }
   std::optional<vmass::Truth> truth;
   if (!truth_path.empty()) {
     std::string error;
@@ -185,7 +184,14 @@ int main(int argc, char** argv) {
 
   auto pipeline = std::make_unique<vmass::Pipeline>(params);
   vmass::ReplaySummary summary(truth);
+  const vmass::TimeUs tick_period_us =
+      vmass::from_seconds(1.0 / params.estimator.differencing.tick_rate_hz);
+  std::string truth_refusal;  // the truth's time base is not the input's (checked at tick 0)
+  bool first_tick = true;
   auto on_tick = [&](const vmass::Sample& sample) {
+    if (first_tick && truth) truth_refusal = truth->check_time_base(sample.time_us, tick_period_us);
+    first_tick = false;
+    if (!truth_refusal.empty()) return;
     pipeline->step(sample);
     summary.add(pipeline->estimate());
     if (writer) writer->write(pipeline->estimate());
@@ -194,11 +200,18 @@ int main(int argc, char** argv) {
                            ? replay_samples(samples_path, params, on_tick)
                            : replay_log(log_path, *loaded.config,
                                         params.estimator.differencing.tick_rate_hz, on_tick);
-  if (!read_ok) {
+  if (!truth_refusal.empty()) {
+    std::cerr << "vmass-replay: " << truth_path << ": not the truth of " << input_path << ": "
+              << truth_refusal << "\n";
+  }
+  if (!read_ok || !truth_refusal.empty()) {
     if (writer) writer->close();
-    if (out_path.empty() && !csv_path.empty()) fs::remove(csv_path);
+    if (!csv_path.empty()) fs::remove(csv_path);  // nothing of this run is worth keeping
     return 2;
   }
+  // The end of the input: the open Bayes batch enters the final estimate (the CSV keeps one
+  // row per tick; the summary reports the flushed estimate).
+  if (pipeline->flush()) summary.finish(pipeline->estimate());
   if (writer && !writer->close()) {
     std::cerr << "vmass-replay: " << csv_path << ": write failed\n";
     return 1;

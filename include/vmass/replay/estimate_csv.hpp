@@ -2,6 +2,8 @@
 //   time_s,mass_kg,mass_ci_low_kg,mass_ci_high_kg,mu_n,status, then mass_std_kg,reason,
 //   longitudinal_pairs,lateral_pairs,longitudinal_availability,lateral_availability,
 //   initial_mass_kg
+// Before the first estimate (no prior yet) the cells mass_kg, mass_ci_low_kg, mass_ci_high_kg,
+// mu_n, mass_std_kg and initial_mass_kg are empty.
 // Numbers are written locale-free with fixed precision, so files compare byte for byte (the
 // golden replay test relies on it). Not thread-safe.
 #pragma once

@@ -1,8 +1,11 @@
 // Truth and ReplaySummary: how good a run was against the simulator's truth.
 //
 // Metrics (per run): final mass and error; time until the estimate stays within 5%, 2% and 1%
-// of the truth until the end; interval coverage (fraction of ticks with a dynamic estimate whose
-// 95% interval contains the truth); availability per block; status at the end.
+// of the truth until the end (only when the final estimate used a pair: a prior that happens to
+// be close is no result); interval coverage (fraction of ticks with a dynamic estimate whose
+// 95% interval contains the truth); the prior and where it came from; pairs used in the
+// estimate and accepted by the supervisor, apart (Bayes holds a batch back until it completes
+// or is flushed); availability per block; status at the end.
 // Not thread-safe.
 #pragma once
 
@@ -24,6 +27,15 @@ class Truth {
   /// The true mass at time t (the last row at or before t).
   double mass_at(TimeUs t) const;
   bool empty() const { return times_.empty(); }
+  TimeUs first_time_us() const { return times_.front(); }
+  TimeUs last_time_us() const { return times_.back(); }
+
+  /// The time-base rule: a truth describes a replay when the replay's first tick lies within
+  /// the truth's time span (first to last row), give or take one tick period. vmass-sim writes
+  /// its log, samples and truth from 0 s, so they line up; a log recorded on a car carries epoch
+  /// times, and a truth starting at 0 s does not describe it. "" when the rule holds, else why
+  /// not (both spans, in seconds).
+  std::string check_time_base(TimeUs first_tick_us, TimeUs tick_period_us) const;
 
  private:
   std::vector<TimeUs> times_;
@@ -34,15 +46,22 @@ class ReplaySummary {
  public:
   explicit ReplaySummary(std::optional<Truth> truth) : truth_(std::move(truth)) {}
 
+  /// The estimate of each tick, in order.
   void add(const Estimate& estimate);
+  /// The estimate after Pipeline::flush() at the end of the input (same time as the last tick,
+  /// the open Bayes batch taken in): it becomes the final estimate; no tick is counted.
+  void finish(const Estimate& flushed);
 
   struct Result {
     bool has_estimate = false;
     Estimate final_estimate;
+    long pairs_accepted = 0;  ///< by the supervisor, both blocks (pairs_used: in the estimate)
     std::optional<double> true_mass_kg;
-    std::optional<double> error_percent;       ///< (estimate - truth) / truth
-    std::optional<double> time_within_5_s, time_within_2_s, time_within_1_s;  ///< empty: never
-    std::optional<double> coverage;            ///< fraction of dynamic ticks covering the truth
+    std::optional<double> error_percent;  ///< (estimate - truth) / truth
+    /// Time from which the estimate stays within 5/2/1 % of the truth to the end; empty when
+    /// it never does, and when the final estimate used no pair (a prior proves nothing).
+    std::optional<double> time_within_5_s, time_within_2_s, time_within_1_s;
+    std::optional<double> coverage;  ///< fraction of dynamic ticks covering the truth
     double duration_s = 0.0;
     long ticks = 0;
     long reinitialisations = 0;
@@ -50,10 +69,12 @@ class ReplaySummary {
   Result result() const;
   /// The human table vmass-replay prints.
   std::string table(const std::string& estimator_name) const;
-  /// One JSON object with the same numbers (for the scenario suite).
+  /// One JSON object with everything the table shows (for the scenario suite).
   std::string json(const std::string& estimator_name) const;
 
  private:
+  void check_tolerances(const Estimate& e);
+
   std::optional<Truth> truth_;
   TimeUs first_us_ = 0;
   bool started_ = false;
@@ -68,5 +89,9 @@ class ReplaySummary {
   bool any_mass_ = false;
   TimeUs first_mass_us_ = 0;
 };
+
+/// How a prior is described to a reader, e.g. "static, eq. 3" or "no standstill before
+/// driving: the empty mass".
+std::string_view describe_prior(StatusReason prior_reason);
 
 }  // namespace vmass
