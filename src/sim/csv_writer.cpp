@@ -51,6 +51,18 @@ const TruthColumn kTruthColumns[] = {
     {"slip_rear_rad", [](const TruthRow& r) { return r.slip_rear_rad; }},
     {"wheel_force_noise_n", [](const TruthRow& r) { return r.wheel_force_noise_n; }},
     {"stopped", [](const TruthRow& r) { return r.stopped ? 1.0 : 0.0; }},
+    {"hub_torque_nm", [](const TruthRow& r) { return r.hub_torque_nm; }},
+    {"converter_ratio", [](const TruthRow& r) { return r.converter_ratio; }},
+    {"engine_speed_radps", [](const TruthRow& r) { return r.engine_speed_radps; }},
+    {"accessory_on", [](const TruthRow& r) { return r.accessory_on ? 1.0 : 0.0; }},
+    {"wind_head_mps", [](const TruthRow& r) { return r.wind_head_mps; }},
+    {"wind_cross_mps", [](const TruthRow& r) { return r.wind_cross_mps; }},
+    {"esc_brake_force_n", [](const TruthRow& r) { return r.esc_brake_force_n; }},
+    {"abs_active", [](const TruthRow& r) { return r.abs_active ? 1.0 : 0.0; }},
+    {"bump_force_n", [](const TruthRow& r) { return r.bump_force_n; }},
+    {"viscous_loss_n", [](const TruthRow& r) { return r.viscous_loss_n; }},
+    {"brake_temperature_c", [](const TruthRow& r) { return r.brake_temperature_c; }},
+    {"brake_gain_scale", [](const TruthRow& r) { return r.brake_gain_scale; }},
 };
 
 void append_number(std::string& out, double v) {

@@ -39,11 +39,13 @@ std::string DriverParams::validate() const {
   if (!(brake_time_constant_s > 0.0)) return "driver.brake_time_constant_s must be > 0";
   if (!(lookahead_min_m > 0.0 && lookahead_time_s >= 0.0)) return "driver.lookahead must be > 0";
   if (!(steering_time_constant_s > 0.0)) return "driver.steering_time_constant_s must be > 0";
+  if (!(regen_max_force_n >= 0.0 && regen_min_speed_mps > 0.0)) {
+    return "driver.regen_max_force_n must be >= 0 and regen_min_speed_mps > 0";
+  }
   return "";
 }
 
-Driver::Driver(const DriverParams& params, const DriverProfile& profile,
-               const TrueVehicle& vehicle)
+Driver::Driver(const DriverParams& params, const DriverProfile& profile, const TrueVehicle& vehicle)
     : p_(params), profile_(profile), vehicle_(vehicle) {}
 
 void Driver::reset(double t_s, const VehicleState& s) {
@@ -114,11 +116,17 @@ DriverCommand Driver::update(double t_s, double dt_s, const VehicleState& s) {
     speed_integral_ = std::clamp(speed_integral_, -i_limit, i_limit);
     const double force = m * (a_ref + p_.speed_gain_per_s * err) +
                          p_.speed_integral_gain_per_s2 * m * speed_integral_ + resist;
-    if (force > 0.0) {
-      cmd.wheel_torque_demand_nm = force * vehicle_.wheel_radius_m;
-    } else if (force < -p_.coast_band_n) {
+    double remaining = force;
+    if (force < 0.0 && p_.regen_max_force_n > 0.0 && v > p_.regen_min_speed_mps) {
+      const double regen = std::max(force, -p_.regen_max_force_n);
+      cmd.wheel_torque_demand_nm = regen * vehicle_.wheel_radius_m;
+      remaining = force - regen;
+    }
+    if (remaining > 0.0) {
+      cmd.wheel_torque_demand_nm = remaining * vehicle_.wheel_radius_m;
+    } else if (remaining < -p_.coast_band_n) {
       pressure_cmd = std::min(p_.max_brake_pressure_pa,
-                              (-force - p_.coast_band_n) / vehicle_.brake_gain_n_per_pa);
+                              (-remaining - p_.coast_band_n) / vehicle_.brake_gain_n_per_pa);
     }
   }
   brake_pressure_pa_ +=

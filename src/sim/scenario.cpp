@@ -76,6 +76,7 @@ std::string Scenario::validate() const {
     }
   }
   if (auto m = road.validate(); !m.empty()) return m;
+  if (auto m = wind.validate(); !m.empty()) return m;
   if (auto m = driver.validate(); !m.empty()) return m;
   if (auto m = driver_params.validate(); !m.empty()) return m;
   if (auto m = sensors.validate(); !m.empty()) return m;

@@ -1,5 +1,6 @@
 #include "vmass/sim/true_vehicle.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vmass::sim {
@@ -35,6 +36,54 @@ std::string TrueVehicle::validate() const {
   if (auto m = powertrain.validate("vehicle.powertrain."); !m.empty()) return m;
   if (auto m = rear_right_suspension.validate("vehicle.rear_right_suspension."); !m.empty())
     return m;
+  if (auto m = driveline.validate("vehicle.driveline."); !m.empty()) return m;
+  if (auto m = imu.validate("vehicle.imu."); !m.empty()) return m;
+  if (auto m = brakes.validate("vehicle.brakes."); !m.empty()) return m;
+  if (auto m = wheel_speed.validate("vehicle.wheel_speed."); !m.empty()) return m;
+  if (!(rolling_resistance_speed_coeff_s2_per_m2 >= 0.0 && driveline_viscous_n_per_mps >= 0.0 &&
+        side_force_area_m2 >= 0.0)) {
+    return "vehicle: speed-dependent resistances and side force area must be >= 0";
+  }
+  if (!(levelling_time_constant_s > 0.0)) return "vehicle.levelling_time_constant_s must be > 0";
+  return "";
+}
+
+std::string_view driven_axle_name(DrivenAxle a) {
+  switch (a) {
+    case DrivenAxle::kFront:
+      return "front";
+    case DrivenAxle::kRear:
+      return "rear";
+    case DrivenAxle::kAll:
+      return "all";
+  }
+  return "unknown";
+}
+
+std::string BrakeParams::validate(const std::string& prefix) const {
+  if (!std::isfinite(pressure_offset_pa)) return prefix + "pressure_offset_pa must be finite";
+  if (!(heat_capacity_j_per_k > 0.0 && cooling_time_s > 0.0)) {
+    return prefix + "heat_capacity_j_per_k and cooling_time_s must be > 0";
+  }
+  if (!(fade_full_c > fade_start_c)) return prefix + "fade_full_c must be > fade_start_c";
+  if (!(fade_max_fraction >= 0.0 && fade_max_fraction < 1.0)) {
+    return prefix + "fade_max_fraction must be in [0, 1)";
+  }
+  return "";
+}
+
+double BrakeParams::gain_scale(double temperature_c) const {
+  const double x = (temperature_c - fade_start_c) / (fade_full_c - fade_start_c);
+  return 1.0 - fade_max_fraction * std::clamp(x, 0.0, 1.0);
+}
+
+std::string WheelSpeedParams::validate(const std::string& prefix) const {
+  if (!(std::abs(radius_error_fraction) < 0.1))
+    return prefix + "radius_error_fraction in (-0.1, 0.1)";
+  if (!(slip_stiffness > 1.0)) return prefix + "slip_stiffness must be > 1";
+  if (!(display_overread_fraction >= 0.0 && display_overread_fraction < 0.2)) {
+    return prefix + "display_overread_fraction in [0, 0.2)";
+  }
   return "";
 }
 

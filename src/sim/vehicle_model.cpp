@@ -99,7 +99,58 @@ double corner_sprung_mass_kg(const TrueVehicle& p, const MassProperties& m) {
   return std::max(20.0, sprung);
 }
 
-Vec derivatives(const TrueVehicle& p, const Road& road, const Vec& x, bool stopped,
+// The longitudinal forces on each axle (body x), before the steering rotation.
+struct AxleForces {
+  double front = 0.0;
+  double rear = 0.0;
+};
+
+// Drive, brake, rolling resistance and the realism effects' longitudinal forces (see the header).
+AxleForces longitudinal_forces(const TrueVehicle& p, const Road& road, const Vec& x,
+                               const VehicleInputs& in, const Loads& w, Realism fx,
+                               VehicleOutputs* o) {
+  const double vx = x[kVx];
+  const double g = p.gravity_mps2;
+  const bool speed_res = fx.has(Effect::kSpeedResistance);
+  double brake = p.brake_gain_n_per_pa * in.brake_gain_scale * std::max(0.0, in.brake_pressure_pa) *
+                 std::clamp(vx / kBrakeFadeSpeedMps, -1.0, 1.0);
+  double esc = 0.0;
+  if (fx.has(Effect::kAbsEsc)) {
+    const double mu = road.friction(x[kDist]);
+    const double limit = 0.95 * mu * (w.front_axle + w.rear_axle);
+    o->abs_active = std::abs(brake) > limit;
+    brake = std::clamp(brake, -limit, limit);
+    const double excess = std::abs(x[kLoadAy]) - 0.75 * mu * g;
+    if (excess > 0.0 && vx > kSlipMinSpeedMps) esc = 0.5 * in.mass.mass_kg * excess;
+  }
+  const double f_roll = p.rolling_resistance_coeff +
+                        (speed_res ? p.rolling_resistance_speed_coeff_s2_per_m2 * vx * vx : 0.0);
+  const double roll_sign = std::tanh(vx / kRollingFadeSpeedMps);
+  const double viscous = speed_res ? p.driveline_viscous_n_per_mps * vx : 0.0;
+  double bump = 0.0;
+  if (fx.has(Effect::kRoadRoughness) && !road.bumps.empty()) {
+    const double lf = in.mass.cg_x_m;
+    const double lr = p.wheelbase_m - lf;
+    bump = in.mass.mass_kg * (road.bump_deceleration_mps2(x[kDist] + lf, vx) +
+                              road.bump_deceleration_mps2(x[kDist] - lr, vx));
+  }
+  const double drive = o->drive_force_n - viscous;
+  const double front_drive_share =
+      p.driven_axle == DrivenAxle::kFront ? 1.0 : (p.driven_axle == DrivenAxle::kRear ? 0.0 : 0.5);
+  AxleForces f;
+  f.front = front_drive_share * drive - p.brake_front_share * (brake + esc) -
+            f_roll * w.front_axle * roll_sign - 0.5 * bump;
+  f.rear = (1.0 - front_drive_share) * drive - (1.0 - p.brake_front_share) * (brake + esc) -
+           f_roll * w.rear_axle * roll_sign - 0.5 * bump;
+  o->brake_force_n = std::abs(brake);
+  o->esc_brake_force_n = esc;
+  o->rolling_resistance_n = f_roll * (w.front_axle + w.rear_axle) * roll_sign;
+  o->viscous_loss_n = viscous;
+  o->bump_force_n = bump;
+  return f;
+}
+
+Vec derivatives(const TrueVehicle& p, const Road& road, Realism fx, const Vec& x, bool stopped,
                 const VehicleInputs& in, VehicleOutputs* out) {
   const MassProperties& m = in.mass;
   const double g = p.gravity_mps2;
@@ -111,8 +162,8 @@ Vec derivatives(const TrueVehicle& p, const Road& road, const Vec& x, bool stopp
   const Loads w = wheel_loads(p, m, theta, x[kLoadAx], x[kLoadAy]);
 
   Vec d{};
-  double fx = 0.0;
-  double fy = 0.0;
+  double f_x = 0.0;
+  double f_y = 0.0;
   VehicleOutputs o;
   o.grade_rad = theta;
   o.bank_rad = phi;
@@ -121,8 +172,8 @@ Vec derivatives(const TrueVehicle& p, const Road& road, const Vec& x, bool stopp
   o.rear_axle_load_n = w.rear_axle;
   o.rear_right_load_n = w.rr;
   if (stopped) {
-    fx = g * std::sin(theta);
-    fy = g * std::cos(theta) * std::sin(phi);
+    f_x = g * std::sin(theta);
+    f_y = g * std::cos(theta) * std::sin(phi);
   } else {
     const double vx = x[kVx];
     const double vy = x[kVy];
@@ -132,19 +183,19 @@ Vec derivatives(const TrueVehicle& p, const Road& road, const Vec& x, bool stopp
                        wheel_lateral_force(p.front_tyre, x[kSlipF], w.fr);
     const double fyr = wheel_lateral_force(p.rear_tyre, x[kSlipR], w.rl) +
                        wheel_lateral_force(p.rear_tyre, x[kSlipR], w.rr);
-    const double brake = p.brake_gain_n_per_pa * std::max(0.0, in.brake_pressure_pa) *
-                         std::clamp(vx / kBrakeFadeSpeedMps, -1.0, 1.0);
-    const double roll_sign = std::tanh(vx / kRollingFadeSpeedMps);
-    const double roll_f = p.rolling_resistance_coeff * w.front_axle * roll_sign;
-    const double roll_r = p.rolling_resistance_coeff * w.rear_axle * roll_sign;
-    const double fxf = o.drive_force_n - p.brake_front_share * brake - roll_f;
-    const double fxr = -(1.0 - p.brake_front_share) * brake - roll_r;
-    const double drag = 0.5 * p.air_density_kg_per_m3 * p.drag_area_m2 * vx * std::abs(vx);
+    const AxleForces axle = longitudinal_forces(p, road, x, in, w, fx, &o);
+    const bool wind = fx.has(Effect::kWind);
+    const double v_air = vx + (wind ? in.wind_head_mps : 0.0);
+    const double drag = 0.5 * p.air_density_kg_per_m3 * p.drag_area_m2 * v_air * std::abs(v_air);
+    const double side = wind ? 0.5 * p.air_density_kg_per_m3 * p.side_force_area_m2 *
+                                   in.wind_cross_mps * std::abs(in.wind_cross_mps)
+                             : 0.0;
     const double cd = std::cos(delta);
     const double sd = std::sin(delta);
-    const double force_x = fxf * cd - fyf * sd + fxr - drag - M * g * std::sin(theta);
-    const double force_y = fxf * sd + fyf * cd + fyr - M * g * std::cos(theta) * std::sin(phi);
-    const double moment_z = lf * (fxf * sd + fyf * cd) - lr * fyr;
+    const double force_x = axle.front * cd - fyf * sd + axle.rear - drag - M * g * std::sin(theta);
+    const double force_y =
+        axle.front * sd + fyf * cd + fyr + side - M * g * std::cos(theta) * std::sin(phi);
+    const double moment_z = lf * (axle.front * sd + fyf * cd) - lr * fyr;
 
     d[kVx] = (force_x + M * r * vy) / (M + in.rotating_mass_kg);
     d[kVy] = force_y / M - r * vx;
@@ -160,29 +211,28 @@ Vec derivatives(const TrueVehicle& p, const Road& road, const Vec& x, bool stopp
     const double slip_r_ss = std::atan2(vy - lr * r, v_eff);
     d[kSlipF] = v_eff / p.front_tyre.relaxation_length_m * (slip_f_ss - x[kSlipF]);
     d[kSlipR] = v_eff / p.rear_tyre.relaxation_length_m * (slip_r_ss - x[kSlipR]);
-    fx = d[kVx] - r * vy + g * std::sin(theta);
-    fy = d[kVy] + r * vx + g * std::cos(theta) * std::sin(phi);
+    f_x = d[kVx] - r * vy + g * std::sin(theta);
+    f_y = d[kVy] + r * vx + g * std::cos(theta) * std::sin(phi);
 
     o.dvx_dt_mps2 = d[kVx];
     o.dvy_dt_mps2 = d[kVy];
     o.yaw_accel_radps2 = d[kR];
-    o.brake_force_n = std::abs(brake);
     o.drag_force_n = drag;
-    o.rolling_resistance_n = roll_f + roll_r;
+    o.side_wind_force_n = side;
     o.lateral_force_front_n = fyf;
     o.lateral_force_rear_n = fyr;
   }
   const double tau = p.load_transfer_time_constant_s;
-  d[kLoadAx] = (fx - x[kLoadAx]) / tau;
-  d[kLoadAy] = (fy - x[kLoadAy]) / tau;
+  d[kLoadAx] = (f_x - x[kLoadAx]) / tau;
+  d[kLoadAy] = (f_y - x[kLoadAy]) / tau;
   const SuspensionParams& sp = p.rear_right_suspension;
   const double sprung_load = w.rr - sp.unsprung_mass_kg * g;
   d[kZ] = x[kZdot];
   d[kZdot] = (sprung_load - spring_force(sp, x[kZ]) - sp.damping_n_s_per_m * x[kZdot]) /
              corner_sprung_mass_kg(p, m);
   if (out != nullptr) {
-    o.specific_force_x_mps2 = fx;
-    o.specific_force_y_mps2 = fy;
+    o.specific_force_x_mps2 = f_x;
+    o.specific_force_y_mps2 = f_y;
     *out = o;
   }
   return d;
@@ -197,8 +247,8 @@ double push_force_at_rest(const TrueVehicle& p, const Road& road, const VehicleS
 
 }  // namespace
 
-VehicleModel::VehicleModel(const TrueVehicle& params, const Road& road)
-    : p_(params), road_(road) {}
+VehicleModel::VehicleModel(const TrueVehicle& params, const Road& road, Realism effects)
+    : p_(params), road_(road), effects_(effects) {}
 
 VehicleState VehicleModel::settled_state(const VehicleInputs& in, double speed_mps) const {
   VehicleState s;
@@ -221,14 +271,14 @@ void VehicleModel::step(VehicleState& s, const VehicleInputs& in, double dt_s) c
 
   const Vec x0 = pack(s);
   const bool st = s.stopped;
-  const Vec k1 = derivatives(p_, road_, x0, st, in, nullptr);
+  const Vec k1 = derivatives(p_, road_, effects_, x0, st, in, nullptr);
   Vec xt;
   for (std::size_t i = 0; i < kN; ++i) xt[i] = x0[i] + 0.5 * dt_s * k1[i];
-  const Vec k2 = derivatives(p_, road_, xt, st, in, nullptr);
+  const Vec k2 = derivatives(p_, road_, effects_, xt, st, in, nullptr);
   for (std::size_t i = 0; i < kN; ++i) xt[i] = x0[i] + 0.5 * dt_s * k2[i];
-  const Vec k3 = derivatives(p_, road_, xt, st, in, nullptr);
+  const Vec k3 = derivatives(p_, road_, effects_, xt, st, in, nullptr);
   for (std::size_t i = 0; i < kN; ++i) xt[i] = x0[i] + dt_s * k3[i];
-  const Vec k4 = derivatives(p_, road_, xt, st, in, nullptr);
+  const Vec k4 = derivatives(p_, road_, effects_, xt, st, in, nullptr);
   Vec x1;
   for (std::size_t i = 0; i < kN; ++i) {
     x1[i] = x0[i] + dt_s / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
@@ -250,7 +300,7 @@ void VehicleModel::step(VehicleState& s, const VehicleInputs& in, double dt_s) c
 
 VehicleOutputs VehicleModel::evaluate(const VehicleState& s, const VehicleInputs& in) const {
   VehicleOutputs o;
-  derivatives(p_, road_, pack(s), s.stopped, in, &o);
+  derivatives(p_, road_, effects_, pack(s), s.stopped, in, &o);
   return o;
 }
 

@@ -4,6 +4,8 @@
 // Speed: a PI controller with feed-forward on a piecewise-linear speed reference v_ref(t):
 //   F_dem = m_nom (dv_ref/dt + k_p (v_ref - v)) + k_i m_nom int (v_ref - v) dt + F_res,nom(v)
 //   F_dem > 0: wheel-torque demand F_dem r_w;  F_dem < -band: brake pressure (-F_dem - band)/K
+//   with regeneration (regen_max_force_n > 0, above regen_min_speed_mps), a negative F_dem goes
+//   to a negative torque demand first, down to -regen_max_force_n r_w, the rest to the brakes
 //   v_ref = 0 and v < 0.5 m/s: hold the car with a fixed pressure, no torque.
 // The pressure builds through a first-order lag (hydraulics). Torque lag is in the Powertrain.
 //
@@ -60,6 +62,8 @@ struct DriverParams {
   double lookahead_time_s = 0.8;
   double radial_integral_gain_rad_per_m_s = 0.002;
   double steering_time_constant_s = 0.05;  ///< hands: lag on the closed-loop steering command
+  double regen_max_force_n = 0.0;          ///< brake blending of an electric car (0: none)
+  double regen_min_speed_mps = 1.5;
 
   std::string validate() const;
 };

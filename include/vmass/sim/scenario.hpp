@@ -20,6 +20,7 @@
 #include "vmass/sim/road.hpp"
 #include "vmass/sim/sensor_model.hpp"
 #include "vmass/sim/true_vehicle.hpp"
+#include "vmass/sim/wind.hpp"
 
 namespace vmass::sim {
 
@@ -42,6 +43,7 @@ struct Scenario {
   std::vector<LoadItem> initial_payload;  ///< on top of vehicle.empty
   std::vector<LoadChange> load_changes;
   Road road;
+  WindParams wind;  ///< the wind effect
   DriverProfile driver;
   DriverParams driver_params;
   SensorSpec sensors;

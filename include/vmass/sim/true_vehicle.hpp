@@ -1,18 +1,58 @@
-// TrueVehicle: the TRUE parameters of the simulated car (a front-wheel-drive hybrid SUV of
-// about 1.5 t empty). The config.yaml that vmass-sim writes is derived from these (see
-// config_writer.hpp for which values it copies exactly and which carry a calibration error).
+// TrueVehicle: the TRUE parameters of a simulated car. The defaults are the demo car of the named
+// scenarios (a front-wheel-drive hybrid SUV of about 1.5 t empty); the vehicle population
+// (population.hpp) draws others. The config.yaml that vmass-sim writes is derived from these (see
+// config_writer.hpp and datasheet.hpp for what the engineer knows and with which errors).
+//
+// The groups below the demo car's values are the realism effects' parameters (realism.hpp):
+// they act only when the simulation switches their effect on.
 //
 // Plain value type; thread-safe to copy and read.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 
+#include "vmass/sim/driveline.hpp"
+#include "vmass/sim/imu_model.hpp"
 #include "vmass/sim/mass_properties.hpp"
 #include "vmass/sim/powertrain.hpp"
 #include "vmass/sim/suspension.hpp"
 #include "vmass/sim/tyre.hpp"
 
 namespace vmass::sim {
+
+enum class DrivenAxle : std::uint8_t { kFront = 0, kRear, kAll };
+std::string_view driven_axle_name(DrivenAxle a);
+
+/// Brake pressure sensor and disc temperature (brake_sensor, brake_fade).
+///   K_eff = K (1 - fade_max (clamp((T - T_start) / (T_full - T_start), 0, 1)))
+///   C T' = F_brake v - C (T - T_ambient) / cooling_time_s
+struct BrakeParams {
+  double pressure_offset_pa = 0.0;  ///< the sensor reads P + this
+  double heat_capacity_j_per_k = 12000.0;
+  double cooling_time_s = 300.0;
+  double ambient_c = 20.0;
+  double fade_start_c = 250.0;
+  double fade_full_c = 550.0;
+  double fade_max_fraction = 0.25;
+
+  std::string validate(const std::string& prefix) const;
+  /// Brake gain scale at disc temperature temperature_c.
+  double gain_scale(double temperature_c) const;
+};
+
+/// The vehicle-speed signal (wheel_speed): the ESC's mean of the four wheel speeds, each
+///   v_wheel = v (1 + radius_error) (1 + kappa),  kappa = F_x,wheel / (slip_stiffness F_z,wheel)
+/// and, on some cars, only the instrument cluster's display speed, which over-reads.
+struct WheelSpeedParams {
+  double radius_error_fraction = 0.0;  ///< the ESC's assumed radius against the true one
+  double slip_stiffness = 15.0;        ///< C_kappa / F_z, per unit slip
+  double display_overread_fraction = 0.03;
+  double display_offset_mps = 0.3;
+
+  std::string validate(const std::string& prefix) const;
+};
 
 struct TrueVehicle {
   /// Empty car (the M_idle of eq. 3): 1500 kg, l_f 1.20 m, CG 0.55 m high.
@@ -33,6 +73,20 @@ struct TrueVehicle {
   TyreParams rear_tyre{24.0, 4000.0, 0.8, 1.0, 1.3, -0.3, 0.35};
   PowertrainParams powertrain;
   SuspensionParams rear_right_suspension;
+
+  // Realism parameters (act only when their effect is on).
+  DrivenAxle driven_axle = DrivenAxle::kFront;
+  DrivelineParams driveline;                              ///< driveline_mode, driveline_lag
+  ImuParams imu;                                          ///< imu_*, body_pitch_roll
+  double rolling_resistance_speed_coeff_s2_per_m2 = 0.0;  ///< f2: f_r = f0 + f2 v^2
+  double driveline_viscous_n_per_mps = 0.0;               ///< loss at the wheels, c_v v
+  double side_force_area_m2 = 0.0;  ///< C_y A_side: cross-wind side force 0.5 rho C_y A w^2
+  BrakeParams brakes;
+  WheelSpeedParams wheel_speed;
+  /// Air suspension or self-levelling on the rear axle: the ride height returns to its nominal
+  /// value after a load change, so the deflection carries no load information.
+  bool rear_levelling = false;
+  double levelling_time_constant_s = 8.0;
 
   /// "" or a message naming the key and the violated bound.
   std::string validate() const;

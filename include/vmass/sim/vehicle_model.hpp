@@ -26,13 +26,23 @@
 // it never reverses (an implicit hill-hold keeps it from rolling back). At rest v_x = v_y = r = 0
 // exactly, so the accelerometer reads g sin theta.
 //
-// Not modelled: body pitch/roll seen by the IMU, combined slip, steering compliance, wind,
-// road roughness, wheel slip (the wheel speed is v_x).
+// Realism effects (realism.hpp) the model applies when switched on:
+//   speed_resistance  f_r = f0 + f2 v_x^2, and a driveline viscous loss c_v v_x at the driven axle
+//   wind              F_drag uses the airspeed v_x + w_head; a side force 0.5 rho C_y A w_c |w_c|
+//   abs_esc           total brake force at most 0.95 mu(s) (F_zf + F_zr) (the pressure keeps
+//                     rising: the ABS); above |a_y| = 0.75 mu g the ESC brakes with
+//                     0.5 M (|a_y| - 0.75 mu g), a force no pressure signal shows
+//   road_roughness    speed-bump pulses on each axle (Road::bump_deceleration_mps2)
+// VehicleInputs::brake_gain_scale carries brake fade; the hub torque comes from the Driveline.
+//
+// Not modelled: combined slip, steering compliance, wheel slip (the wheel speed is v_x; the
+// sensor stage adds slip to the speed signal).
 //
 // Const member functions are thread-safe; VehicleState is a value owned by the caller.
 #pragma once
 
 #include "vmass/sim/mass_properties.hpp"
+#include "vmass/sim/realism.hpp"
 #include "vmass/sim/road.hpp"
 #include "vmass/sim/true_vehicle.hpp"
 
@@ -58,10 +68,13 @@ struct VehicleState {
 /// What acts on the car during one integration step (held constant over the step).
 struct VehicleInputs {
   MassProperties mass;
-  double wheel_torque_nm = 0.0;   ///< T_wheel (Powertrain::wheel_torque_nm)
+  double wheel_torque_nm = 0.0;   ///< torque at the hubs (Driveline::hub_torque_nm)
   double rotating_mass_kg = 0.0;  ///< m_rot (Powertrain::rotating_mass_kg)
   double brake_pressure_pa = 0.0;
   double road_wheel_angle_rad = 0.0;  ///< delta, positive steering left
+  double brake_gain_scale = 1.0;      ///< brake fade (1: none)
+  double wind_head_mps = 0.0;         ///< Wind::head_mps
+  double wind_cross_mps = 0.0;        ///< Wind::cross_mps
 };
 
 /// Forces and accelerations at one state (for truth output and tests).
@@ -82,11 +95,16 @@ struct VehicleOutputs {
   double rear_right_load_n = 0.0;      ///< wheel load incl. unsprung weight
   double lateral_force_front_n = 0.0;  ///< F_yf, ISO sign (positive to the left)
   double lateral_force_rear_n = 0.0;
+  double esc_brake_force_n = 0.0;  ///< ESC intervention (not in the brake pressure)
+  bool abs_active = false;         ///< the brake force is friction-limited
+  double bump_force_n = 0.0;       ///< speed-bump pulses
+  double viscous_loss_n = 0.0;     ///< driveline viscous loss
+  double side_wind_force_n = 0.0;
 };
 
 class VehicleModel {
  public:
-  VehicleModel(const TrueVehicle& params, const Road& road);
+  VehicleModel(const TrueVehicle& params, const Road& road, Realism effects = Realism::none());
 
   /// A state with the suspension and load transfer at rest: standing (speed 0) or driving
   /// straight at speed_mps, at the start of the road, heading along +x.
@@ -104,6 +122,7 @@ class VehicleModel {
  private:
   TrueVehicle p_;
   Road road_;
+  Realism effects_;
 };
 
 }  // namespace vmass::sim
