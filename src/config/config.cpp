@@ -33,6 +33,7 @@ void read_suspension(YamlReader r, SuspensionParams* s) {
   r.reject_unknown_keys();
 }
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 void read_estimator(YamlReader r, EstimatorParams* e) {
   std::string type = std::string(regressor_type_name(e->type));
   r.read("type", &type);
@@ -90,8 +91,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     f.read("accel_noise_std_mps2", &p.velocity_filter.accel_noise_std_mps2);
     f.read("speed_noise_std_mps", &p.velocity_filter.speed_noise_std_mps);
     f.read("pseudo_lateral_velocity_std_mps", &p.velocity_filter.pseudo_lateral_velocity_std_mps);
-    f.read("initial_lateral_velocity_std_mps",
-           &p.velocity_filter.initial_lateral_velocity_std_mps);
+    f.read("initial_lateral_velocity_std_mps", &p.velocity_filter.initial_lateral_velocity_std_mps);
     f.read("accel_x_offset_walk_mps2_per_sqrt_s",
            &p.velocity_filter.accel_x_offset_walk_mps2_per_sqrt_s);
     f.read("initial_accel_x_offset_std_mps2", &p.velocity_filter.initial_accel_x_offset_std_mps2);

@@ -178,8 +178,7 @@ void truth_rows(const ReplaySummary::Result& r, std::ostringstream& out) {
   out << "within 2% from       " << within_line(r, r.time_within_2_s) << "\n";
   out << "within 1% from       " << within_line(r, r.time_within_1_s) << "\n";
   out << "interval coverage    "
-      << (r.coverage ? fixed(100.0 * *r.coverage, 1) + "% of ticks" : std::string("n/a"))
-      << "\n";
+      << (r.coverage ? fixed(100.0 * *r.coverage, 1) + "% of ticks" : std::string("n/a")) << "\n";
 }
 
 }  // namespace

@@ -10,16 +10,26 @@ namespace vmass {
 
 std::string samples_csv_column(Input in) {
   switch (in) {
-    case Input::kWheelTorque: return "wheel_torque_nm";
-    case Input::kBrakePressure: return "brake_pressure_pa";
-    case Input::kAccelX: return "accel_x_mps2";
-    case Input::kAccelY: return "accel_y_mps2";
-    case Input::kYawRate: return "yaw_rate_radps";
-    case Input::kSpeed: return "speed_mps";
-    case Input::kSteeringWheelAngle: return "steering_wheel_angle_rad";
-    case Input::kRearRightDeflection: return "rear_right_deflection_m";
-    case Input::kGear: return "gear";
-    case Input::kCount: break;
+    case Input::kWheelTorque:
+      return "wheel_torque_nm";
+    case Input::kBrakePressure:
+      return "brake_pressure_pa";
+    case Input::kAccelX:
+      return "accel_x_mps2";
+    case Input::kAccelY:
+      return "accel_y_mps2";
+    case Input::kYawRate:
+      return "yaw_rate_radps";
+    case Input::kSpeed:
+      return "speed_mps";
+    case Input::kSteeringWheelAngle:
+      return "steering_wheel_angle_rad";
+    case Input::kRearRightDeflection:
+      return "rear_right_deflection_m";
+    case Input::kGear:
+      return "gear";
+    case Input::kCount:
+      break;
   }
   return "";
 }

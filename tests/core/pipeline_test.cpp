@@ -55,11 +55,11 @@ TEST_P(PipelineTest, FollowsALoadStepAfterReinitialisation) {
   // The static init sees the true load through the deflection, with a calibration error of
   // +3 % on the added mass, so that the events have something to correct.
   auto deflection = [&](double m) {
-    return testing::deflection_for(v.empty_mass_kg + 1.03 * (m - v.empty_mass_kg), v,
-                                   p.suspension);
+    return testing::deflection_for(v.empty_mass_kg + 1.03 * (m - v.empty_mass_kg), v, p.suspension);
   };
   std::vector<Sample> drive = testing::standstill_samples(0.0, 5.0, deflection(first.mass_kg));
-  append(&drive, testing::longitudinal_samples(first, v, 5.0, 65.0, 10.0, deflection(first.mass_kg)));
+  append(&drive,
+         testing::longitudinal_samples(first, v, 5.0, 65.0, 10.0, deflection(first.mass_kg)));
   append(&drive, testing::standstill_samples(65.0, 72.0, deflection(second.mass_kg)));
   append(&drive,
          testing::longitudinal_samples(second, v, 72.0, 132.0, 10.0, deflection(second.mass_kg)));

@@ -29,7 +29,8 @@ TEST(Config, MinimalFileGivesDefaults) {
 }
 
 TEST(Config, UnknownKeyNamesFileLineAndKey) {
-  const std::string text = std::string(kMinimal) + "estimator:\n  rls:\n    forgeting_factor: 0.99\n";
+  const std::string text =
+      std::string(kMinimal) + "estimator:\n  rls:\n    forgeting_factor: 0.99\n";
   const ConfigLoad c = load_config_text(text, "typo.yaml");
   ASSERT_FALSE(c.ok());
   EXPECT_EQ(c.error, "typo.yaml:14: estimator.rls.forgeting_factor: unknown key");
@@ -54,7 +55,8 @@ TEST(Config, MissingRequiredKey) {
 }
 
 TEST(Config, OutOfRangeValueNamesKeyAndBound) {
-  const std::string text = std::string(kMinimal) + "estimator:\n  rls:\n    forgetting_factor: 0.5\n";
+  const std::string text =
+      std::string(kMinimal) + "estimator:\n  rls:\n    forgetting_factor: 0.5\n";
   const ConfigLoad c = load_config_text(text, "range.yaml");
   ASSERT_FALSE(c.ok());
   EXPECT_NE(c.error.find("forgetting_factor"), std::string::npos) << c.error;

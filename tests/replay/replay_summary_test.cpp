@@ -93,7 +93,7 @@ TEST(ReplaySummary, NoStaticPriorIsNamedAsSuch) {
 
 TEST(ReplaySummary, WithPairsTheTimeWithinCountsFromTheLastExcursion) {
   ReplaySummary summary(constant_truth(1700.0, 0.0, 10.0));
-  summary.add(static_prior(0));  // 2.9 % low: outside 2 % and 1 %
+  summary.add(static_prior(0));                    // 2.9 % low: outside 2 % and 1 %
   summary.add(refined(10'000, 1690.0, 100, 100));  // 0.59 % low
   summary.add(refined(20'000, 1702.0, 200, 200));
   const ReplaySummary::Result r = summary.result();
@@ -151,7 +151,7 @@ TEST(Truth, TimeBaseMustContainTheFirstTick) {
   const Truth truth = constant_truth(1700.0, 0.0, 60.0);
   const TimeUs tick = 10'000;
   EXPECT_EQ(truth.check_time_base(0, tick), "");
-  EXPECT_EQ(truth.check_time_base(-tick, tick), "");          // one tick early: tolerated
+  EXPECT_EQ(truth.check_time_base(-tick, tick), "");  // one tick early: tolerated
   EXPECT_EQ(truth.check_time_base(from_seconds(60.0), tick), "");
   // A candump log recorded on a car: epoch times.
   const std::string epoch = truth.check_time_base(from_seconds(1.7e9), tick);

@@ -76,8 +76,8 @@ TEST(TickResampler, HoldsAndMarksStaleSamples) {
   ticks.push(s, on_tick);
   ASSERT_EQ(out.size(), 11u);
   EXPECT_EQ(out[3].time_us, 30'000);
-  EXPECT_TRUE(out[3].has(Input::kSpeed));   // 30 ms old: fresh enough
-  EXPECT_EQ(out[9].valid, 0u);              // 90 ms old: stale
+  EXPECT_TRUE(out[3].has(Input::kSpeed));  // 30 ms old: fresh enough
+  EXPECT_EQ(out[9].valid, 0u);             // 90 ms old: stale
   EXPECT_EQ(out[10].speed_mps, 2.0);
 }
 

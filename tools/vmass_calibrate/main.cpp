@@ -28,6 +28,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "exit_code.hpp"
 #include "vmass/calibrate/ballast_csv.hpp"
 #include "vmass/calibrate/calibration_report.hpp"
 #include "vmass/calibrate/plateau_detector.hpp"
@@ -40,8 +41,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kExitFit = 1;
-constexpr int kExitUsage = 2;
+using vmass::tools::kExitFailure;
+using vmass::tools::kExitUsage;
 
 int fail(const std::string& message, int code = kExitUsage) {
   std::cerr << "vmass-calibrate: error: " << message << "\n";
@@ -140,6 +141,7 @@ bool write_file(const std::string& path, const std::string& text) {
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 int main(int argc, char** argv) {
   CLI::App app{
       "vmass-calibrate: rear suspension stiffness from static ballast steps (paper eq. 1-3)"};
@@ -174,14 +176,7 @@ int main(int argc, char** argv) {
   app.add_option("--settle-s", plateau.settle_s, "plateaus: settling time always dropped");
   app.add_option("--min-plateau-s", plateau.min_plateau_s, "plateaus: shortest plateau kept");
   app.add_option("--min-step-mm", min_step_mm, "plateaus: closer levels are the same load");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitUsage;
-  }
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   plateau.min_step_m = min_step_mm * 1e-3;
 
   // ---- Vehicle geometry (and empty mass) from the config and the flags.
@@ -269,7 +264,7 @@ int main(int argc, char** argv) {
   // ---- Fit.
   const vmass::calibrate::SuspensionFitResult result =
       vmass::calibrate::fit_suspension(steps, geometry, fit);
-  if (!result.ok()) return fail(result.error, kExitFit);
+  if (!result.ok()) return fail(result.error, kExitFailure);
   const vmass::calibrate::SuspensionCalibration& cal = *result.calibration;
   const std::vector<vmass::calibrate::MassCheckRow> rows =
       have_empty_mass ? vmass::calibrate::mass_check(cal, vehicle)
@@ -307,7 +302,7 @@ int main(int argc, char** argv) {
         shell_quote("vmass-calibrate: " + fs::path(ballast_path).filename().string());
     const int rc = std::system(command.c_str());
     fs::remove(json_path);
-    if (rc != 0) return fail("plotting failed (" + command + ")", kExitFit);
+    if (rc != 0) return fail("plotting failed (" + command + ")", kExitFailure);
     if (!json) std::cout << "plot               " << plot_path << "\n";
   }
   return 0;

@@ -26,6 +26,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "exit_code.hpp"
+
 #include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/core/pipeline.hpp"
@@ -123,6 +125,7 @@ bool replay_log(const std::string& path, const vmass::Config& config, double tic
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 int main(int argc, char** argv) {
   CLI::App app{"vmass-replay: run the mass estimator offline over recorded samples or a CAN log"};
   std::string config_path, samples_path, log_path, truth_path, out_path, plot_path, estimator;
@@ -140,7 +143,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_path, "write the estimate at every tick as CSV");
   app.add_option("--plot", plot_path, "write a PNG plot (needs --out or uses a temporary CSV)");
   app.add_flag("--json", json, "print the summary as one JSON object instead of a table");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   if (samples_path.empty() && log_path.empty()) {
     std::cerr << "vmass-replay: give the input: --samples CSV or --log LOG\n";
     return 2;

@@ -6,12 +6,14 @@
 // Publishes vmass.mass_estimate_t on VMASS_ESTIMATE, vmass.status_t on VMASS_STATUS (and
 // vmass.pair_t on VMASS_PAIRS when lcm.publish_pairs). Runs under systemd as Type=notify
 // (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
-// (--replay, --samples) stops the daemon at its end.
+// (--replay, --samples) stops the daemon at its end. Exit codes (tools/common/exit_code.hpp):
+// 0 orderly stop, 1 start-up failure (input or LCM cannot be opened), 2 usage or config error.
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
 #include "daemon.hpp"
+#include "exit_code.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"vmassd: live vehicle mass estimation from CAN data, published on LCM"};
@@ -31,7 +33,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-restore", o.no_restore, "do not restore the saved state at start");
   can->excludes(replay)->excludes(samples);
   replay->excludes(samples);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
 
   // Diagnostics go to stderr (the journal under systemd); stdout stays free.
   spdlog::set_default_logger(spdlog::stderr_color_mt("vmassd"));

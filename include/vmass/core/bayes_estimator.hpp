@@ -38,8 +38,8 @@
 //
 // Pairs are collected into batches of batch_size (paper: 100 in simulation, 200 on the car);
 // the published state changes only when a batch completes, or when flush() closes the open
-// batch early (end of a log, daemon shutdown; conjugacy makes a short batch exact too). predict() uses the current posterior
-// (the pairs of the open batch not yet included).
+// batch early (end of a log, daemon shutdown; conjugacy makes a short batch exact too). predict()
+// uses the current posterior (the pairs of the open batch not yet included).
 //
 // Bad data never produces NaN: update() ignores (returns false, changes nothing) a pair with a
 // non-finite field or weight <= 0; a batch whose posterior would not be finite is dropped.

@@ -82,7 +82,7 @@ struct PipelineSnapshot {
   RegressorType type = RegressorType::kBayes;
   bool has_prior = false;  ///< false: nothing worth saving (restore() refuses it)
   StatusReason prior_reason = StatusReason::kWaitingForStandstill;
-  MassPrior prior;         ///< the prior that (re)started the regressor (sets the RLS bound)
+  MassPrior prior;  ///< the prior that (re)started the regressor (sets the RLS bound)
   long pairs_used = 0;
   // RLS (type kRls): theta = [M, mu] and its covariance P, row-major.
   double rls_theta[2] = {0.0, 0.0};
