@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
 
 namespace vmass {
@@ -24,12 +25,13 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
 }
 
 void read_suspension(YamlReader r, SuspensionParams* s) {
-  r.require("stiffness_n_per_m", &s->stiffness_n_per_m);
-  r.read("empty_deflection_m", &s->empty_deflection_m);
-  r.read("progressive_knee_m", &s->progressive_knee_m);
-  r.read("progressive_rate_n_per_m2", &s->progressive_rate_n_per_m2);
-  r.read("linear_range_kg", &s->linear_range_kg);
-  r.read("calibrated_range_kg", &s->calibrated_range_kg);
+  for (const SuspensionField& field : kSuspensionFields) {
+    if (field.required) {
+      r.require(field.key, &(s->*field.member));
+    } else {
+      r.read(field.key, &(s->*field.member));
+    }
+  }
   r.reject_unknown_keys();
 }
 
