@@ -2,13 +2,13 @@
 // "within 1 %" claim for a prior, the prior labelled as one, pairs used and accepted apart, the
 // flushed batch in the final estimate, a truth refused when its time base is not the input's,
 // and the JSON carrying what the table shows.
-#include "vmass/replay/replay_summary.hpp"
+#include "replay_summary.hpp"
 
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "vmass/replay/estimate_csv.hpp"
+#include "vmass/csv/estimate_csv.hpp"
 
 namespace vmass {
 namespace {

@@ -28,13 +28,13 @@
 
 #include "exit_code.hpp"
 
+#include "replay_summary.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/core/pipeline.hpp"
-#include "vmass/replay/estimate_csv.hpp"
-#include "vmass/replay/replay_summary.hpp"
-#include "vmass/replay/samples_csv.hpp"
-#include "vmass/replay/tick_resampler.hpp"
+#include "vmass/csv/estimate_csv.hpp"
+#include "vmass/csv/samples_csv.hpp"
+#include "vmass/csv/tick_resampler.hpp"
 #include "vmass/signals/log_replay.hpp"
 #include "vmass/signals/signal_table.hpp"
 

@@ -12,7 +12,7 @@
 #include <memory>
 #include <string>
 
-#include "vmass/replay/samples_csv.hpp"
+#include "vmass/csv/samples_csv.hpp"
 #include "vmass/service/input_source.hpp"
 
 namespace vmass::service {

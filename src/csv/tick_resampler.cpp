@@ -1,4 +1,4 @@
-#include "vmass/replay/tick_resampler.hpp"
+#include "vmass/csv/tick_resampler.hpp"
 
 namespace vmass {
 

@@ -1,4 +1,4 @@
-#include "vmass/replay/estimate_csv.hpp"
+#include "vmass/csv/estimate_csv.hpp"
 
 namespace vmass {
 

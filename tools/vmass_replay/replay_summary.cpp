@@ -1,4 +1,4 @@
-#include "vmass/replay/replay_summary.hpp"
+#include "replay_summary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "vmass/replay/csv.hpp"
+#include "vmass/csv/csv.hpp"
 
 namespace vmass {
 namespace {
@@ -24,61 +24,6 @@ std::string opt_json(const std::optional<double>& v, int digits) {
   return v ? fixed(*v, digits) : std::string("null");
 }
 }  // namespace
-
-Truth::Truth(std::vector<TimeUs> times, std::vector<double> masses)
-    : times_(std::move(times)), masses_kg_(std::move(masses)) {}
-
-std::optional<Truth> Truth::load(const std::string& path, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    *error = path + ": cannot open the truth file";
-    return std::nullopt;
-  }
-  std::string line;
-  std::getline(in, line);
-  const auto header = split_csv_line(line);
-  if (header.size() < 2 || header[0] != "time_s" || header[1] != "mass_kg") {
-    *error = path + ":1: expected a header starting with time_s,mass_kg";
-    return std::nullopt;
-  }
-  std::vector<TimeUs> times;
-  std::vector<double> masses;
-  long number = 1;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty()) continue;
-    const auto cells = split_csv_line(line);
-    double t = 0.0, m = 0.0;
-    if (cells.size() < 2 || !parse_csv_number(cells[0], &t) || !parse_csv_number(cells[1], &m)) {
-      *error = path + ":" + std::to_string(number) + ": expected time_s,mass_kg numbers";
-      return std::nullopt;
-    }
-    times.push_back(from_seconds(t));
-    masses.push_back(m);
-  }
-  if (times.empty()) {
-    *error = path + ": no rows";
-    return std::nullopt;
-  }
-  return Truth(std::move(times), std::move(masses));
-}
-
-double Truth::mass_at(TimeUs t) const {
-  auto it = std::upper_bound(times_.begin(), times_.end(), t);
-  if (it == times_.begin()) return masses_kg_.front();
-  return masses_kg_[static_cast<std::size_t>(std::distance(times_.begin(), it) - 1)];
-}
-
-std::string Truth::check_time_base(TimeUs first_tick_us, TimeUs tick_period_us) const {
-  if (first_tick_us >= first_time_us() - tick_period_us &&
-      first_tick_us <= last_time_us() + tick_period_us) {
-    return "";
-  }
-  return "its times (" + fixed(to_seconds(first_time_us()), 3) + " to " +
-         fixed(to_seconds(last_time_us()), 3) + " s) do not contain the input's first tick (" +
-         fixed(to_seconds(first_tick_us), 3) +
-         " s): another time base (a log with epoch times needs a truth in the same times)";
-}
 
 std::string_view describe_prior(StatusReason prior_reason) {
   switch (prior_reason) {

@@ -1,4 +1,4 @@
-#include "vmass/replay/csv.hpp"
+#include "vmass/csv/csv.hpp"
 
 #include <limits>
 #include <locale>

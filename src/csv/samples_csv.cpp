@@ -1,10 +1,10 @@
-#include "vmass/replay/samples_csv.hpp"
+#include "vmass/csv/samples_csv.hpp"
 
 #include <cmath>
 #include <locale>
 #include <sstream>
 
-#include "vmass/replay/csv.hpp"
+#include "vmass/csv/csv.hpp"
 
 namespace vmass {
 

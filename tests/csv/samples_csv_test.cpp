@@ -1,12 +1,12 @@
 // The samples CSV reader: empty cells are invalid inputs, bad rows are reported and skipped.
-#include "vmass/replay/samples_csv.hpp"
+#include "vmass/csv/samples_csv.hpp"
 
 #include <cstdio>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
-#include "vmass/replay/tick_resampler.hpp"
+#include "vmass/csv/tick_resampler.hpp"
 
 namespace vmass {
 namespace {
