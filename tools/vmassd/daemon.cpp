@@ -19,11 +19,13 @@
 #include <spdlog/spdlog.h>
 #include <lcm/lcm-cpp.hpp>
 
-#include "vmass/service/can_input_source.hpp"
-#include "vmass/service/estimator_loop.hpp"
+#include "vmass/runtime/can_input_source.hpp"
+#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/samples_csv_source.hpp"
+#include "vmass/runtime/seqlock.hpp"
+#include "vmass/runtime/socketcan_frame_source.hpp"
+#include "vmass/runtime/tick_step.hpp"
 #include "vmass/service/lcm_publisher.hpp"
-#include "vmass/service/samples_csv_source.hpp"
-#include "vmass/service/seqlock.hpp"
 #include "vmass/service/spsc_queue.hpp"
 #include "vmass/service/state_store.hpp"
 #include "vmass/service/systemd_notifier.hpp"
@@ -35,6 +37,7 @@ namespace {
 
 using vmass::TimeUs;
 namespace svc = vmass::service;
+namespace rt = vmass::runtime;
 
 constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::int64_t kPollNs = 100'000'000;  // longest uninterrupted wait: 100 ms
@@ -91,15 +94,15 @@ struct Shared {
   std::atomic<bool> stop{false};             ///< main -> receive, estimator
   std::atomic<bool> stop_publisher{false};   ///< main -> publisher (after the estimator joined)
   std::atomic<bool> estimator_done{false};   ///< a recording was played to its end
-  svc::SpscQueue<svc::InputRecord> inputs;   ///< receive -> estimator (frames, rows)
+  svc::SpscQueue<rt::InputRecord> inputs;    ///< receive -> estimator (frames, rows)
   std::atomic<std::int64_t> input_drops{0};  ///< live records the full input ring refused
-  svc::SpscQueue<svc::TickRecord> queue;     ///< estimator -> publisher
+  svc::SpscQueue<rt::TickRecord> queue;      ///< estimator -> publisher
   sem_t queue_sem;
   std::atomic<std::int64_t> queue_drops{0};
-  svc::SeqLock<svc::TickRecord> latest;         ///< estimator -> main, publisher (status)
-  svc::SeqLock<svc::TickTimingSummary> timing;  ///< estimator -> status
-  svc::SeqLock<SnapshotSlot> snapshot;          ///< estimator -> main (persistence)
-  std::atomic<std::int64_t> heartbeat{0};       ///< ticks run (watchdog evidence)
+  rt::SeqLock<rt::TickRecord> latest;          ///< estimator -> main, publisher (status)
+  rt::SeqLock<svc::TickTimingSummary> timing;  ///< estimator -> status
+  rt::SeqLock<SnapshotSlot> snapshot;          ///< estimator -> main (persistence)
+  std::atomic<std::int64_t> heartbeat{0};      ///< ticks run (watchdog evidence)
   std::atomic<std::int64_t> state_saves{0};
   std::atomic<bool> input_ended{false};
   std::atomic<std::int64_t> late_records{0};  ///< applied after the tick they belonged to
@@ -161,7 +164,7 @@ void apply_realtime(const svc::RealtimeSettings& rt) {
 
 /// Hands a record to the estimator thread. A recording waits for room (back-pressure: nothing of
 /// a log is lost); a live bus never waits: the record is dropped and counted.
-void push_input(const svc::InputRecord& record, Shared& shared, bool block) {
+void push_input(const rt::InputRecord& record, Shared& shared, bool block) {
   while (!shared.inputs.push(record)) {
     if (!block) {
       shared.input_drops.fetch_add(1, std::memory_order_relaxed);
@@ -205,8 +208,8 @@ TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan) {
   return (waited >= 0 && waited <= 1'000'000) ? tick_clock_us - waited : tick_clock_us;
 }
 
-void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) {
-  svc::InputRecord record;
+void receive_thread(rt::InputSource& source, Shared& shared, const Plan& plan) {
+  rt::InputRecord record;
   if (plan.recorded) {
     if (!plan.has_first_record) {
       shared.input_ended.store(true, std::memory_order_release);
@@ -221,7 +224,7 @@ void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) 
       if (!sleep_until(due, shared.stop)) return;
       source.fetch(&record);
       push_input(record, shared, true);
-      if (source.read(0) != svc::InputSource::Read::kRecord) break;
+      if (source.read(0) != rt::InputSource::Read::kRecord) break;
       // A log in time order: every record stamped before the next one has been pushed.
       shared.pushed_through_us.store(source.record_time_us() - 1, std::memory_order_release);
     }
@@ -230,15 +233,15 @@ void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) 
   }
   while (!shared.stop.load(std::memory_order_relaxed)) {
     switch (source.read(100)) {
-      case svc::InputSource::Read::kRecord:
+      case rt::InputSource::Read::kRecord:
         source.fetch(&record);
         record.time_us = live_time_us(record.time_us, plan);
         push_input(record, shared, false);
         break;
-      case svc::InputSource::Read::kTimeout:
+      case rt::InputSource::Read::kTimeout:
         break;
-      case svc::InputSource::Read::kDown:
-      case svc::InputSource::Read::kEnd:
+      case rt::InputSource::Read::kDown:
+      case rt::InputSource::Read::kEnd:
         // The source waits / re-opens with backoff inside read(); never give up.
         sleep_until(mono_ns() + 10'000'000, shared.stop);
         break;
@@ -248,7 +251,7 @@ void receive_thread(svc::InputSource& source, Shared& shared, const Plan& plan) 
 
 // --------------------------------------------------------------------------- estimator thread
 
-void publish_record(const svc::TickRecord& record, Shared& shared, bool block) {
+void publish_record(const rt::TickRecord& record, Shared& shared, bool block) {
   while (!shared.queue.push(record)) {
     if (!block || shared.stop.load(std::memory_order_relaxed)) {
       shared.queue_drops.fetch_add(1, std::memory_order_relaxed);
@@ -259,8 +262,8 @@ void publish_record(const svc::TickRecord& record, Shared& shared, bool block) {
   sem_post(&shared.queue_sem);
 }
 
-void after_tick(const svc::TickRecord& record, svc::EstimatorLoop& loop, Shared& shared,
-                const Plan& plan, svc::TickStats& stats, std::int64_t k) {
+void after_tick(const rt::TickRecord& record, rt::TickStep& loop, Shared& shared, const Plan& plan,
+                svc::TickStats& stats, std::int64_t k) {
   publish_record(record, shared, plan.recorded);
   shared.latest.write(record);
   shared.heartbeat.store(k + 1, std::memory_order_release);
@@ -273,7 +276,7 @@ void after_tick(const svc::TickRecord& record, svc::EstimatorLoop& loop, Shared&
 }
 
 // NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
-void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared& shared,
+void estimator_thread(rt::InputSource& source, rt::TickStep& loop, Shared& shared,
                       const Plan& plan) {
   apply_realtime(plan.realtime);
   svc::TickStats stats(plan.period_ns);
@@ -281,7 +284,7 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
 
   if (plan.max_speed) {
     // Log time: apply every record stamped <= T_k, then tick; stop after the last record.
-    svc::InputRecord record;
+    rt::InputRecord record;
     bool pending = plan.has_first_record;
     TimeUs last_applied_us = plan.t0_us;
     // Ticks k with T_k <= the last record's time, as vmass-replay.
@@ -291,12 +294,12 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
         last_applied_us = std::max(last_applied_us, source.record_time_us());
         source.fetch(&record);
         source.apply(record);
-        pending = source.read(0) == svc::InputSource::Read::kRecord;
+        pending = source.read(0) == rt::InputSource::Read::kRecord;
       }
       if (!pending && t > last_applied_us) break;
       const std::int64_t start = mono_ns();
       stats.on_unpaced_tick();
-      const svc::TickRecord& tick_record = loop.tick(k, t, source);
+      const rt::TickRecord& tick_record = loop.tick(k, t, source);
       stats.on_done(mono_ns() - start, false);
       after_tick(tick_record, loop, shared, plan, stats, k);
       ++k;
@@ -305,7 +308,7 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
   } else {
     const std::int64_t max_behind_ticks =
         std::max<std::int64_t>(1, static_cast<std::int64_t>(kNsPerSecond / plan.period_ns));
-    svc::InputRecord held;  // popped from the ring, not applied yet (stamped after its tick)
+    rt::InputRecord held;  // popped from the ring, not applied yet (stamped after its tick)
     bool has_held = false;
     TimeUs last_record_us = 0;
     bool has_record = false;
@@ -363,7 +366,7 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
       drain();
       // A finished recording: tick up to its last record, as offline replay does.
       if (ended && !has_held && (!has_record || t > last_record_us)) break;
-      const svc::TickRecord& record = loop.tick(k, t, source);
+      const rt::TickRecord& record = loop.tick(k, t, source);
       previous_t = t;
       const std::int64_t done = mono_ns();
       ++k;
@@ -390,7 +393,7 @@ void estimator_thread(svc::InputSource& source, svc::EstimatorLoop& loop, Shared
 // --------------------------------------------------------------------------- status and publisher
 
 struct StatusContext {
-  const svc::InputSource* source = nullptr;
+  const rt::InputSource* source = nullptr;
   std::string source_name;
   double tick_rate_hz = 100.0;
   std::int64_t start_mono_ns = 0;
@@ -411,13 +414,13 @@ svc::DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool s
   s.publish_queue_drops = shared.queue_drops.load(std::memory_order_relaxed);
   s.state_saves = shared.state_saves.load(std::memory_order_relaxed);
   s.state_restored = ctx.state_restored;
-  const svc::SourceHealth health = ctx.source->health();
+  const rt::SourceHealth health = ctx.source->health();
   s.detail = health.detail;
   if (stopping) {
     s.state = svc::DaemonState::kStopping;
-  } else if (health.state == svc::SourceState::kDown) {
+  } else if (health.state == rt::SourceState::kDown) {
     s.state = svc::DaemonState::kInputLost;
-  } else if (health.state == svc::SourceState::kEnded ||
+  } else if (health.state == rt::SourceState::kEnded ||
              shared.input_ended.load(std::memory_order_relaxed)) {
     s.state = svc::DaemonState::kInputEnded;
   } else {
@@ -430,7 +433,7 @@ void publisher_thread(svc::LcmPublisher& publisher, Shared& shared, const Status
                       double status_period_s) {
   const auto period_ns = static_cast<std::int64_t>(status_period_s * 1e9);
   std::int64_t next_status = mono_ns() + period_ns;
-  svc::TickRecord record;
+  rt::TickRecord record;
   for (;;) {
     const std::int64_t wait_until = std::min(next_status, mono_ns() + kPollNs);
     const timespec ts = to_timespec(wait_until);
@@ -549,13 +552,13 @@ int run(const Options& options) {
   }
 
   // ------------------------------------------------------------------ input
-  std::unique_ptr<svc::InputSource> source;
+  std::unique_ptr<rt::InputSource> source;
   std::string error;
   if (!options.samples_csv.empty()) {
     const double timeout_s = settings.daemon.input_timeout_s > 0.0
                                  ? settings.daemon.input_timeout_s
                                  : 5.0 / plan.tick_rate_hz;  // as vmass-replay
-    source = svc::SamplesCsvSource::open(options.samples_csv, timeout_s, &error);
+    source = rt::SamplesCsvSource::open(options.samples_csv, timeout_s, &error);
     if (!source) {
       spdlog::error("{}", error);
       return 1;
@@ -585,9 +588,9 @@ int run(const Options& options) {
     if (!unmapped.empty()) {
       spdlog::warn("can.inputs: not mapped, stay invalid: {}", unmapped);
     }
-    std::unique_ptr<svc::FrameSource> frames;
+    std::unique_ptr<rt::FrameSource> frames;
     if (!options.replay_log.empty()) {
-      frames = svc::CandumpFrameSource::open(options.replay_log, &error);
+      frames = rt::CandumpFrameSource::open(options.replay_log, &error);
       plan.rounded_grid = true;  // vmass-replay --log's tick grid
     } else {
       vmass::can::SocketCanOptions can_options;
@@ -599,14 +602,14 @@ int run(const Options& options) {
         spdlog::error("{}", invalid);
         return 2;
       }
-      frames = svc::SocketCanFrameSource::open(can_options, &error);
+      frames = rt::SocketCanFrameSource::open(can_options, &error);
     }
     if (!frames) {
       spdlog::error("{}", error);
       return 1;
     }
-    source = std::make_unique<svc::CanInputSource>(std::move(frames), can_inputs.decoder,
-                                                   can_inputs.mapping);
+    source = std::make_unique<rt::CanInputSource>(std::move(frames), can_inputs.decoder,
+                                                  can_inputs.mapping);
   }
 
   // ------------------------------------------------------------------ LCM and state
@@ -615,7 +618,7 @@ int run(const Options& options) {
     spdlog::error("cannot open LCM at '{}'", settings.lcm.url);
     return 1;
   }
-  svc::EstimatorLoop loop(params);
+  rt::TickStep loop(params);
 
   std::string state_path =
       options.state_file.empty() ? settings.daemon.state_file : options.state_file;
@@ -649,7 +652,7 @@ int run(const Options& options) {
 
   // ------------------------------------------------------------------ start
   if (plan.recorded) {
-    plan.has_first_record = source->read(0) == svc::InputSource::Read::kRecord;
+    plan.has_first_record = source->read(0) == rt::InputSource::Read::kRecord;
     plan.t0_us = plan.has_first_record ? source->record_time_us() : 0;
     if (!plan.has_first_record) spdlog::warn("{}: no records", source->describe());
   }  // live: T_0 is set with tick 0's CLOCK_MONOTONIC below

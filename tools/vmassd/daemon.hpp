@@ -34,7 +34,7 @@
 #include <string>
 
 #include "vmass/config/config.hpp"
-#include "vmass/service/input_source.hpp"
+#include "vmass/runtime/input_source.hpp"
 #include "vmass/service/service_config.hpp"
 
 namespace vmassd {

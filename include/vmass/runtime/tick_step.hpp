@@ -1,4 +1,4 @@
-// EstimatorLoop: what the daemon's estimator thread does at each tick, without the thread:
+// TickStep: what happens at each tick, in vmass-replay and in the daemon's estimator thread:
 //
 //   InputSource's table --sample_at(T)--> Sample --Pipeline::step--> TickRecord
 //
@@ -14,9 +14,9 @@
 #include <cstdint>
 
 #include "vmass/core/pipeline.hpp"
-#include "vmass/service/input_source.hpp"
+#include "vmass/runtime/input_source.hpp"
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 /// One tick's outcome (trivially copyable: goes through SpscQueue).
 struct TickRecord {
@@ -28,10 +28,10 @@ struct TickRecord {
   double input_age_s[kInputCount] = {};  ///< T - time of the input's last update; -1: never
 };
 
-class EstimatorLoop {
+class TickStep {
  public:
   /// params must be valid.
-  explicit EstimatorLoop(const PipelineParams& params);
+  explicit TickStep(const PipelineParams& params);
 
   /// Runs tick number `tick` at time tick_us on the source's table (estimator thread: see
   /// InputSource): the Sample, the pipeline step, and each input's age and validity.
@@ -46,4 +46,4 @@ class EstimatorLoop {
   TickRecord record_;
 };
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

@@ -1,14 +1,14 @@
-#include "vmass/service/estimator_loop.hpp"
+#include "vmass/runtime/tick_step.hpp"
 
 #include <type_traits>
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 static_assert(std::is_trivially_copyable<TickRecord>::value, "TickRecord goes through SpscQueue");
 
-EstimatorLoop::EstimatorLoop(const PipelineParams& params) : pipeline_(params) {}
+TickStep::TickStep(const PipelineParams& params) : pipeline_(params) {}
 
-const TickRecord& EstimatorLoop::tick(std::int64_t tick, TimeUs tick_us, InputSource& source) {
+const TickRecord& TickStep::tick(std::int64_t tick, TimeUs tick_us, InputSource& source) {
   const Sample sample = source.sample_at(tick_us);
   const StepResult result = pipeline_.step(sample);
   record_.tick = tick;
@@ -23,4 +23,4 @@ const TickRecord& EstimatorLoop::tick(std::int64_t tick, TimeUs tick_us, InputSo
   return record_;
 }
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

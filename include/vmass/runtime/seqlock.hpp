@@ -18,7 +18,7 @@
 #include <cstring>
 #include <type_traits>
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 template <class T>
 class SeqLock {
@@ -74,4 +74,4 @@ class SeqLock {
   std::atomic<std::uint64_t> data_[kWords];
 };
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

@@ -37,9 +37,9 @@
 
 #include "vmass/can/can_frame.hpp"
 #include "vmass/core/sample.hpp"
-#include "vmass/service/seqlock.hpp"
+#include "vmass/runtime/seqlock.hpp"
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 /// One record on its way from the reading thread to the estimator thread (trivially copyable:
 /// goes through SpscQueue). Which member is meaningful depends on the source.
@@ -148,4 +148,4 @@ class InputSource {
 
 std::string_view source_state_name(SourceState s);
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

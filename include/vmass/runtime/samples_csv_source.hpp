@@ -13,9 +13,9 @@
 #include <string>
 
 #include "vmass/csv/samples_csv.hpp"
-#include "vmass/service/input_source.hpp"
+#include "vmass/runtime/input_source.hpp"
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 class SamplesCsvSource final : public InputSource {
  public:
@@ -51,4 +51,4 @@ class SamplesCsvSource final : public InputSource {
   InputValues values_;  ///< estimator thread
 };
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

@@ -1,6 +1,6 @@
-#include "vmass/service/samples_csv_source.hpp"
+#include "vmass/runtime/samples_csv_source.hpp"
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 SamplesCsvSource::SamplesCsvSource(const std::string& path, double timeout_s)
     : path_(path), reader_(path) {
@@ -49,7 +49,7 @@ void SamplesCsvSource::apply(const InputRecord& record) {
 }
 
 Sample SamplesCsvSource::sample_at(TimeUs tick_us) {
-  return service::sample_at(values_, tick_us, timeouts_);
+  return runtime::sample_at(values_, tick_us, timeouts_);
 }
 
 TimeUs SamplesCsvSource::input_age_us(Input input, TimeUs tick_us) const {
@@ -57,4 +57,4 @@ TimeUs SamplesCsvSource::input_age_us(Input input, TimeUs tick_us) const {
   return t < 0 ? -1 : tick_us - t;
 }
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

@@ -1,9 +1,9 @@
-#include "vmass/service/input_source.hpp"
+#include "vmass/runtime/input_source.hpp"
 
 #include <algorithm>
 #include <cstring>
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 Sample sample_at(const InputValues& values, TimeUs tick_us, const InputTimeouts& timeouts) {
   Sample s = values.latest;
@@ -41,4 +41,4 @@ std::string_view source_state_name(SourceState s) {
   return "unknown";
 }
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

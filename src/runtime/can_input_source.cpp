@@ -1,82 +1,6 @@
-#include "vmass/service/can_input_source.hpp"
+#include "vmass/runtime/can_input_source.hpp"
 
-#include <sys/socket.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-
-#include <linux/can.h>
-
-namespace vmass::service {
-
-// ------------------------------------------------------------------------------ candump log
-
-CandumpFrameSource::CandumpFrameSource(const std::string& path)
-    : path_(path), in_(path, std::ios::binary) {
-  reader_ = std::make_unique<can::CandumpReader>(in_, path);
-}
-
-std::unique_ptr<CandumpFrameSource> CandumpFrameSource::open(const std::string& path,
-                                                             std::string* error) {
-  std::unique_ptr<CandumpFrameSource> s(new CandumpFrameSource(path));
-  if (!s->in_) {
-    if (error) *error = path + ": cannot open the log: " + std::strerror(errno);
-    return nullptr;
-  }
-  return s;
-}
-
-FrameSource::Read CandumpFrameSource::read(can::CanFrame* frame, int /*timeout_ms*/) {
-  can::CandumpRecord record;
-  if (!reader_->next(&record)) return Read::kEnd;
-  *frame = record.frame;
-  return Read::kFrame;
-}
-
-// ------------------------------------------------------------------------------ SocketCAN
-
-std::unique_ptr<SocketCanFrameSource> SocketCanFrameSource::open(
-    const can::SocketCanOptions& options, std::string* error) {
-  std::string why;
-  int fd = can::open_can_socket(options, &why);
-  if (fd < 0) {
-    // Tell "this kernel has no CAN" (fatal) from "the interface is not there yet" (wait).
-    const int probe = ::socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
-    if (probe < 0 && (errno == EAFNOSUPPORT || errno == EPROTONOSUPPORT)) {
-      if (error) *error = options.interface + ": " + why;
-      return nullptr;
-    }
-    if (probe >= 0) ::close(probe);
-  }
-  auto reader = std::make_unique<can::SocketCanReader>(
-      fd, [options](std::string* e) { return can::open_can_socket(options, e); },
-      options.reopen_initial_ms, options.reopen_max_ms);
-  return std::make_unique<SocketCanFrameSource>(std::move(reader), options.interface);
-}
-
-SocketCanFrameSource::SocketCanFrameSource(std::unique_ptr<can::SocketCanReader> reader,
-                                           std::string interface)
-    : reader_(std::move(reader)), interface_(std::move(interface)) {}
-
-FrameSource::Read SocketCanFrameSource::read(can::CanFrame* frame, int timeout_ms) {
-  switch (reader_->read(frame, timeout_ms)) {
-    case can::ReadStatus::kFrame:
-      return Read::kFrame;
-    case can::ReadStatus::kTimeout:
-    case can::ReadStatus::kError:  // socket kept; counted by the reader
-      return Read::kTimeout;
-    case can::ReadStatus::kInterfaceDown:
-    case can::ReadStatus::kInterfaceGone:
-    case can::ReadStatus::kReopening:
-      return Read::kDown;
-    case can::ReadStatus::kClosed:
-      return Read::kEnd;
-  }
-  return Read::kTimeout;
-}
-
-// ------------------------------------------------------------------------------ source
+namespace vmass::runtime {
 
 CanInputSource::CanInputSource(std::unique_ptr<FrameSource> frames,
                                std::shared_ptr<const can::Decoder> decoder,
@@ -150,4 +74,4 @@ std::string CanInputSource::input_report() const {
   return out;
 }
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

@@ -1,0 +1,43 @@
+// CandumpFrameSource: the frames of a candump -l log (can-utils), stamped with the log's times.
+// Corrupt lines are counted as malformed, reported through on_error and skipped.
+//
+// Thread-safety: one reading thread.
+#pragma once
+
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "vmass/can/candump.hpp"
+#include "vmass/runtime/frame_source.hpp"
+
+namespace vmass::runtime {
+
+/// A candump -l log (can-utils), frames stamped with the log's times. Corrupt lines are counted
+/// as malformed and skipped.
+class CandumpFrameSource final : public FrameSource {
+ public:
+  static std::unique_ptr<CandumpFrameSource> open(const std::string& path, std::string* error);
+  Read read(can::CanFrame* frame, int timeout_ms) override;
+  bool recorded() const override { return true; }
+  std::string describe() const override { return "replay:" + path_; }
+  std::string problem() const override { return problem_; }
+  /// Called for each corrupt line (message "path:line: ..."), which is then skipped.
+  void on_error(std::function<void(const can::CandumpError&)> callback) {
+    reader_->on_error(std::move(callback));
+  }
+  const can::CandumpStats& stats() const { return reader_->stats(); }
+  std::int64_t malformed() const override {
+    return static_cast<std::int64_t>(reader_->stats().corrupt);
+  }
+
+ private:
+  explicit CandumpFrameSource(const std::string& path);
+  std::string path_;
+  std::ifstream in_;
+  std::unique_ptr<can::CandumpReader> reader_;
+  std::string problem_;
+};
+
+}  // namespace vmass::runtime
