@@ -7,3 +7,7 @@ function(vmass_expect_exit name exit_code regex)
   add_test(NAME ${name}
     COMMAND sh ${PROJECT_SOURCE_DIR}/tests/common/expect_exit.sh ${exit_code} "${regex}" ${ARGN})
 endfunction()
+
+# The shared test helpers' headers (tests/common): link it to use them.
+add_library(vmass_test_common INTERFACE)
+target_include_directories(vmass_test_common INTERFACE ${CMAKE_CURRENT_LIST_DIR})

@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include "vmass/csv/tick_resampler.hpp"
-
 namespace vmass {
 namespace {
 
@@ -61,24 +59,6 @@ TEST(SamplesCsv, MissingFileAndHeader) {
   SamplesCsvReader no_time(path);
   EXPECT_EQ(no_time.error(), path + ":1: the header has no time_s column");
   std::remove(path.c_str());
-}
-
-TEST(TickResampler, HoldsAndMarksStaleSamples) {
-  TickResampler ticks(100.0, 0.05);
-  std::vector<Sample> out;
-  auto on_tick = [&](const Sample& s) { out.push_back(s); };
-  Sample s;
-  s.set(Input::kSpeed, 1.0);
-  s.time_us = 0;
-  ticks.push(s, on_tick);
-  s.time_us = 100'000;  // 100 ms later: ticks 10..90 ms hold the first sample
-  s.speed_mps = 2.0;
-  ticks.push(s, on_tick);
-  ASSERT_EQ(out.size(), 11u);
-  EXPECT_EQ(out[3].time_us, 30'000);
-  EXPECT_TRUE(out[3].has(Input::kSpeed));  // 30 ms old: fresh enough
-  EXPECT_EQ(out[9].valid, 0u);             // 90 ms old: stale
-  EXPECT_EQ(out[10].speed_mps, 2.0);
 }
 
 }  // namespace

@@ -25,7 +25,8 @@
 #include "vmass/config/config.hpp"
 #include "vmass/csv/estimate_csv.hpp"
 #include "vmass/csv/samples_csv.hpp"
-#include "vmass/csv/tick_resampler.hpp"
+#include "vmass/runtime/recording.hpp"
+#include "vmass/runtime/tick_driver.hpp"
 #include "vmass/service/state_store.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/signals/signal_table.hpp"
@@ -173,8 +174,9 @@ void expect_bit_identical(const LoggedRun& daemon, const std::vector<Estimate>& 
 }
 
 // `vmassd --samples CSV --speed max` ticks in log time and must give exactly what offline replay
-// gives: checked bit for bit against the replay loop (TickResampler + Pipeline, as vmass-replay
-// runs it) and, row for row, against the vmass-replay binary's CSV.
+// gives: checked bit for bit against the offline loop (runtime::TickDriver + Pipeline, as
+// vmass-replay runs it: what the daemon's threads, rings and LCM must not change) and, row for
+// row, against the vmass-replay binary's CSV.
 TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
   for (const std::string type : {"bayes", "rls"}) {
     SCOPED_TRACE(type);
@@ -191,18 +193,18 @@ TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
     ConfigLoad c = load_config(config);
     ASSERT_TRUE(c.ok()) << c.error;
     const PipelineParams& params = c.config->pipeline;
+    const double rate_hz = params.estimator.differencing.tick_rate_hz;
     Pipeline pipeline(params);
-    TickResampler ticks(params.estimator.differencing.tick_rate_hz,
-                        5.0 / params.estimator.differencing.tick_rate_hz);
     std::vector<Estimate> offline;
-    SamplesCsvReader reader(csv_);
-    ASSERT_TRUE(reader.error().empty()) << reader.error();
-    while (auto s = reader.next()) {
-      ticks.push(*s, [&](const Sample& tick) {
-        pipeline.step(tick);
-        offline.push_back(pipeline.estimate());
-      });
-    }
+    std::string error;
+    auto source =
+        runtime::SamplesCsvSource::open(csv_, runtime::default_samples_timeout_s(rate_hz), &error);
+    ASSERT_TRUE(source) << error;
+    runtime::UnpacedClock clock;
+    runtime::TickDriver(*source, rate_hz).run(clock, [&](std::int64_t, TimeUs t) {
+      pipeline.step(source->sample_at(t));
+      offline.push_back(pipeline.estimate());
+    });
     ASSERT_GT(offline.back().pairs_used, 50);
     expect_bit_identical(daemon, offline);
     // The final status closes the run (state stopping) and counts every row.

@@ -24,6 +24,8 @@
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/seqlock.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
+#include "vmass/runtime/tick_driver.hpp"
+#include "vmass/runtime/tick_grid.hpp"
 #include "vmass/runtime/tick_step.hpp"
 #include "vmass/service/lcm_publisher.hpp"
 #include "vmass/service/spsc_queue.hpp"
@@ -116,8 +118,6 @@ struct Plan {
   bool max_speed = false;
   double speed = 1.0;
   double tick_rate_hz = 100.0;
-  TimeUs tick_us = 10'000;     ///< tick period in the input's clock (as TickResampler)
-  bool rounded_grid = false;   ///< T_k = T_0 + round(k * 1e6 / rate) (as vmass-replay --log)
   std::int64_t period_ns = 0;  ///< wall-clock period of the loop
   TimeUs t0_us = 0;            ///< time of tick 0 (input clock)
   std::int64_t mono0_ns = 0;   ///< CLOCK_MONOTONIC of tick 0
@@ -125,13 +125,8 @@ struct Plan {
   int snapshot_every_ticks = 10;
   svc::RealtimeSettings realtime;
 
-  /// T_k in the input clock.
-  TimeUs tick_time(std::int64_t k) const {
-    if (rounded_grid) {
-      return t0_us + static_cast<TimeUs>(std::llround(static_cast<double>(k) * 1e6 / tick_rate_hz));
-    }
-    return t0_us + k * tick_us;
-  }
+  /// T_k in the input clock: the grid every front end ticks on (runtime::TickGrid).
+  TimeUs tick_time(std::int64_t k) const { return rt::TickGrid(t0_us, tick_rate_hz).time_of(k); }
 };
 
 void apply_realtime(const svc::RealtimeSettings& rt) {
@@ -251,6 +246,18 @@ void receive_thread(rt::InputSource& source, Shared& shared, const Plan& plan) {
 
 // --------------------------------------------------------------------------- estimator thread
 
+/// The tick driver's clock at `--speed max`: every tick at once, until a stop is requested.
+class StopClock final : public rt::TickClock {
+ public:
+  explicit StopClock(const std::atomic<bool>& stop) : stop_(stop) {}
+  bool wait_for_tick(std::int64_t /*k*/, TimeUs /*t_k*/) override {
+    return !stop_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  const std::atomic<bool>& stop_;
+};
+
 void publish_record(const rt::TickRecord& record, Shared& shared, bool block) {
   while (!shared.queue.push(record)) {
     if (!block || shared.stop.load(std::memory_order_relaxed)) {
@@ -283,27 +290,18 @@ void estimator_thread(rt::InputSource& source, rt::TickStep& loop, Shared& share
   std::int64_t k = 0;
 
   if (plan.max_speed) {
-    // Log time: apply every record stamped <= T_k, then tick; stop after the last record.
-    rt::InputRecord record;
-    bool pending = plan.has_first_record;
-    TimeUs last_applied_us = plan.t0_us;
-    // Ticks k with T_k <= the last record's time, as vmass-replay.
-    while (plan.has_first_record && !shared.stop.load(std::memory_order_relaxed)) {
-      const TimeUs t = plan.tick_time(k);
-      while (pending && source.record_time_us() <= t) {
-        last_applied_us = std::max(last_applied_us, source.record_time_us());
-        source.fetch(&record);
-        source.apply(record);
-        pending = source.read(0) == rt::InputSource::Read::kRecord;
-      }
-      if (!pending && t > last_applied_us) break;
+    // Log time, through the tick driver vmass-replay runs: identical estimates by construction.
+    StopClock clock(shared.stop);
+    rt::TickDriver driver(source, plan.tick_rate_hz);
+    const rt::TickRun run = driver.run(clock, [&](std::int64_t tick, TimeUs t) {
       const std::int64_t start = mono_ns();
       stats.on_unpaced_tick();
-      const rt::TickRecord& tick_record = loop.tick(k, t, source);
+      const rt::TickRecord& tick_record = loop.tick(tick, t, source);
       stats.on_done(mono_ns() - start, false);
-      after_tick(tick_record, loop, shared, plan, stats, k);
-      ++k;
-    }
+      after_tick(tick_record, loop, shared, plan, stats, tick);
+    });
+    if (!run.any_record) spdlog::warn("{}: no records", source.describe());
+    k = run.ticks;
     shared.input_ended.store(true, std::memory_order_release);
   } else {
     const std::int64_t max_behind_ticks =
@@ -520,7 +518,6 @@ int run(const Options& options) {
 
   Plan plan;
   plan.tick_rate_hz = params.estimator.differencing.tick_rate_hz;
-  plan.tick_us = vmass::from_seconds(1.0 / plan.tick_rate_hz);
   plan.realtime = settings.daemon.realtime;
   const bool recorded = !options.replay_log.empty() || !options.samples_csv.empty();
   if (!recorded && options.speed != "1") {
@@ -591,7 +588,6 @@ int run(const Options& options) {
     std::unique_ptr<rt::FrameSource> frames;
     if (!options.replay_log.empty()) {
       frames = rt::CandumpFrameSource::open(options.replay_log, &error);
-      plan.rounded_grid = true;  // vmass-replay --log's tick grid
     } else {
       vmass::can::SocketCanOptions can_options;
       can_options.interface =
@@ -651,7 +647,7 @@ int run(const Options& options) {
   }
 
   // ------------------------------------------------------------------ start
-  if (plan.recorded) {
+  if (plan.recorded && !plan.max_speed) {  // at max speed the tick driver reads it
     plan.has_first_record = source->read(0) == rt::InputSource::Read::kRecord;
     plan.t0_us = plan.has_first_record ? source->record_time_us() : 0;
     if (!plan.has_first_record) spdlog::warn("{}: no records", source->describe());

@@ -14,10 +14,10 @@
 // The input table (SignalTable) belongs to the estimator thread alone; only records (frames)
 // cross threads, through the SPSC ring, so nothing of the table is shared or locked.
 //
-// With `--speed max` there is no receive thread: the estimator thread reads the recording
-// itself and ticks in log time (T_k = T_0 + k / tick_rate), applying every record stamped <= T_k
-// before tick k and stopping after the last record, exactly as vmass-replay (TickResampler for
-// --samples, its SignalTable loop for --log) does, so both give bit-identical estimates. At a
+// With `--speed max` there is no receive thread: the estimator thread plays the recording
+// through runtime::TickDriver, the loop vmass-replay runs (log time on runtime::TickGrid, every
+// record stamped <= T_k applied before tick k, runtime::TickStep), so both give bit-identical
+// estimates by construction. At a
 // finite speed tick k applies the records stamped <= T_k (later ones wait for their tick) and
 // waits, when the receive thread lags, until all of them are in the ring (a replay skips no
 // tick; one the machine cannot keep up with runs late): a replay at any speed gives the offline

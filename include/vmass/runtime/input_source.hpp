@@ -17,8 +17,8 @@
 //   input i is valid at tick time T  <=>  its last value was valid
 //                                         and T - time_i <= timeout_i
 //
-// (every row updates every input at its time, so this is exactly the zero-order hold of
-// vmass::TickResampler with stale_after = timeout). The CAN table's rule is SignalTable's
+// (every row updates every input at its time: a zero-order hold of the rows, each input stale
+// once older than its timeout). The CAN table's rule is SignalTable's
 // (vmass/signals/signal_table.hpp): per term of each input, timeouts from the `can.inputs`
 // mapping or the DBC cycle times.
 //
