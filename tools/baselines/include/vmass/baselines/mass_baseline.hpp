@@ -2,9 +2,10 @@
 //
 // step() takes one tick (at the tick rate given to make_baseline, time in sample.time_us). Inputs
 // follow vmass::Sample: SI units, ISO 8855, a validity bit per input. Every baseline skips invalid
-// or non-finite inputs and never differences or filters across a hole in the data (a tick that is
-// not exactly one period after the previous one, or a tick it cannot use): its pipeline restarts
-// after the hole. Not thread-safe; no allocation after construction.
+// or non-finite inputs and never differences or filters across a hole in the data (an input it
+// needs invalid or non-finite, or a tick not exactly one period after the previous one): its
+// pipeline restarts after the hole. Ticks where its model does not hold (braking for some) are
+// left out as each header says. Not thread-safe; no allocation after construction.
 #pragma once
 
 #include <string_view>
