@@ -30,7 +30,7 @@ Fathy2008Baseline::Fathy2008Baseline(const NominalVehicle& vehicle, double tick_
       params_(params),
       usable_(vehicle.validate().empty() && params.validate().empty() && tick_rate_hz > 0.0 &&
               params.low_pass_hz < 0.5 * tick_rate_hz),
-      brake_rule_{BrakeRule{}.applied_above_pa, params.min_speed_mps},
+      brake_rule_(brake_rule_for(vehicle, params.min_speed_mps)),
       continuity_(usable_ ? tick_rate_hz : 1.0),
       force_high_(params.high_pass_hz, tick_rate_hz),
       accel_high_(params.high_pass_hz, tick_rate_hz),

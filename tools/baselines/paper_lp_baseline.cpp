@@ -42,7 +42,7 @@ PaperLpBaseline::PaperLpBaseline(const NominalVehicle& vehicle, double tick_rate
       params_(params),
       usable_(vehicle.validate().empty() && params.validate().empty() && tick_rate_hz > 0.0 &&
               params.cutoff_hz < 0.5 * tick_rate_hz),
-      brake_rule_{BrakeRule{}.applied_above_pa, params.min_rolling_speed_mps},
+      brake_rule_(brake_rule_for(vehicle, params.min_rolling_speed_mps)),
       continuity_(usable_ ? tick_rate_hz : 1.0),
       force_filter_(params.cutoff_hz, tick_rate_hz),
       accel_x_filter_(params.cutoff_hz, tick_rate_hz),

@@ -1,5 +1,6 @@
 #include "vmass/baselines/tick_inputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vmass::baselines {
@@ -21,6 +22,20 @@ BrakeState brake_state(const vmass::Sample& sample, const BrakeRule& rule) {
     return BrakeState::kAssumedOff;
   }
   return BrakeState::kUnknown;
+}
+
+BrakeRule brake_rule_for(const NominalVehicle& vehicle, double min_speed_mps) {
+  constexpr double kMinPressurePa = 2.0e4;
+  constexpr double kWeightShare = 0.02;
+  BrakeRule rule;
+  rule.min_speed_mps = min_speed_mps;
+  rule.applied_above_pa = kMinPressurePa;
+  if (vehicle.brake_gain_n_per_pa > 0.0) {
+    const double pa =
+        kWeightShare * vehicle.empty_mass_kg * vehicle.gravity_mps2 / vehicle.brake_gain_n_per_pa;
+    if (std::isfinite(pa)) rule.applied_above_pa = std::max(kMinPressurePa, pa);
+  }
+  return rule;
 }
 
 }  // namespace vmass::baselines

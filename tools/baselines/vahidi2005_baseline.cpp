@@ -52,7 +52,7 @@ Vahidi2005Baseline::Vahidi2005Baseline(const NominalVehicle& vehicle, double tic
               params.cutoff_hz < 0.5 * tick_rate_hz),
       tick_rate_hz_(tick_rate_hz),
       beta_mu_rad_(std::atan(vehicle.rolling_resistance_coeff)),
-      brake_rule_{BrakeRule{}.applied_above_pa, params.min_speed_mps},
+      brake_rule_(brake_rule_for(vehicle, params.min_speed_mps)),
       continuity_(usable_ ? tick_rate_hz : 1.0),
       accel_filter_(params.cutoff_hz, tick_rate_hz),
       regressor_filter_(params.cutoff_hz, tick_rate_hz),

@@ -6,6 +6,7 @@
 //               [--estimators rls,bayes,...] [--knowledge known_scale,datasheet_scale]
 //               [--realism all|none|...] [--estimator-yaml FILE] [--jobs J] --out FILE.jsonl
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
+//   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
 //   vmass-suite --list-scenarios | --population-hash
 //
 // --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
@@ -71,7 +72,7 @@ struct Options {
   bool held_out = false;
   int seeds = 3;
   std::string scenarios, estimators, knowledge, realism = "all", estimator_yaml_path, out;
-  std::string ablation, series_dir, series;
+  std::string ablation, series_dir, series, runs;
   int jobs = 0;
 };
 
@@ -97,6 +98,37 @@ std::string read_text(const std::string& path, bool* ok) {
   return s.str();
 }
 
+// The runs named by --runs (VEHICLE:SCENARIO:SEED), each with its series when asked.
+std::string plan_runs(const Options& o, const vmass::suite::RunSpec& base,
+                      std::vector<vmass::suite::RunSpec>* specs) {
+  const auto realism = Realism::parse(o.realism);
+  if (!realism) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
+  for (const std::string& run : split(o.runs)) {
+    const auto a = run.find(':');
+    const auto b = run.rfind(':');
+    if (a == std::string::npos || a == b)
+      return "--runs: '" + run + "' is not VEHICLE:SCENARIO:SEED";
+    vmass::suite::RunSpec spec = base;
+    spec.vehicle_id = run.substr(0, a) == "nominal" ? nominal_vehicle() : run.substr(0, a);
+    spec.scenario = run.substr(a + 1, b - a - 1);
+    const std::string seed = run.substr(b + 1);
+    if (seed.empty() || seed.find_first_not_of("0123456789") != std::string::npos) {
+      return "--runs: '" + run + "': the seed must be a number";
+    }
+    spec.seed = std::stoull(seed);
+    spec.realism = *realism;
+    spec.realism_label = o.realism;
+    vmass::sim::DrawnVehicle probe;
+    std::string error;
+    if (!vmass::sim::parse_vehicle_id(spec.vehicle_id, &probe, &error)) return "--runs: " + error;
+    if (vmass::sim::population_scenario_description(spec.scenario).empty()) {
+      return "--runs: unknown scenario '" + spec.scenario + "'";
+    }
+    specs->push_back(spec);
+  }
+  return "";
+}
+
 // Expands the options into the list of runs. "" or a usage error.
 std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
   vmass::suite::RunSpec base;
@@ -119,6 +151,7 @@ std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
   }
   std::vector<std::pair<std::string, Realism>> realisms;
   std::vector<std::string> vehicles;
+  if (!o.runs.empty()) return plan_runs(o, base, specs);
   if (!o.ablation.empty()) {
     vehicles.push_back(o.ablation == "auto" ? nominal_vehicle() : o.ablation);
     realisms.emplace_back("none", Realism::none());
@@ -220,6 +253,9 @@ int main(int argc, char** argv) {
   app.add_option("--ablation", o.ablation, "VEHICLE or auto: each effect alone on one vehicle");
   app.add_option("--series-dir", o.series_dir, "directory for per-tick CSVs of --series runs");
   app.add_option("--series", o.series, "runs VEHICLE:SCENARIO:SEED,... to write series for");
+  app.add_option("--runs", o.runs,
+                 "only these runs, VEHICLE:SCENARIO:SEED,... (VEHICLE nominal: "
+                 "the ablation's car)");
   app.add_option("--jobs", o.jobs, "threads (default: all cores)");
   app.add_option("--out", o.out, "JSON lines output");
   app.add_flag("--list-scenarios", list, "list the population scenarios and exit");

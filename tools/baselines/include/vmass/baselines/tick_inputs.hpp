@@ -15,6 +15,7 @@
 
 #include <optional>
 
+#include "vmass/baselines/nominal_vehicle.hpp"
 #include "vmass/core/sample.hpp"
 
 namespace vmass::baselines {
@@ -25,11 +26,17 @@ std::optional<double> read_input(const vmass::Sample& sample, vmass::Input input
 enum class BrakeState { kOff, kApplied, kAssumedOff, kUnknown };
 
 struct BrakeRule {
-  double applied_above_pa = 2.0e4;  ///< 0.2 bar: above a pressure sensor's offset and noise
+  double applied_above_pa = 2.0e4;  ///< see brake_rule_for()
   double min_speed_mps = 1.0;       ///< for "assumed off" without a pressure signal
 };
 
 BrakeState brake_state(const vmass::Sample& sample, const BrakeRule& rule);
+
+/// The rule for a vehicle: brakes count as applied above the pressure at which K_brake P reaches
+/// 2 % of the empty car's weight (1.6 bar on a 1.5 t car, 0.07 bar with a truck's air brakes),
+/// and never below 0.2 bar: above pressure sensors' zero offsets and noise, while the force
+/// below it is small next to the traction changes the methods use.
+BrakeRule brake_rule_for(const NominalVehicle& vehicle, double min_speed_mps);
 
 /// True for kOff and kAssumedOff.
 constexpr bool brakes_off(BrakeState state) {
