@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git clang-format clang-tidy
   # libraries
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libsystemd-dev
-  libboost-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libboost-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
   # LCM: library, tools (lcm-gen, lcm-logger), Java bindings for lcm-spy
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
   # plotting (tools/vmass-plot) and Python test oracles

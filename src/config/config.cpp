@@ -21,6 +21,12 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
   r.read("rotating_mass_kg", &v->rotating_mass_kg);
   r.read("rotating_mass_by_gear_kg", &v->rotating_mass_by_gear_kg);
   r.read("gravity_mps2", &v->gravity_mps2);
+  r.read("max_mass_kg", &v->max_mass_kg);
+  r.read("drag_area_m2", &v->drag_area_m2);
+  r.read("air_density_kg_per_m3", &v->air_density_kg_per_m3);
+  r.read("rolling_resistance_coeff", &v->rolling_resistance_coeff);
+  r.read("wheel_torque_accuracy_fraction", &v->wheel_torque_accuracy_fraction);
+  r.read("wheel_radius_accuracy_fraction", &v->wheel_radius_accuracy_fraction);
   r.reject_unknown_keys();
 }
 

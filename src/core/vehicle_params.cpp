@@ -1,6 +1,7 @@
 #include "vmass/core/vehicle_params.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "vmass/core/param_check.hpp"
 
@@ -30,6 +31,15 @@ std::string VehicleParams::validate() const {
                    rotating_mass_by_gear_kg[i]);
   }
   c.positive("gravity_mps2", gravity_mps2);
+  if (!(max_mass_kg > empty_mass_kg)) c.fail("max_mass_kg", "must be above empty_mass_kg");
+  c.non_negative("drag_area_m2", drag_area_m2);
+  c.positive("air_density_kg_per_m3", air_density_kg_per_m3);
+  for (const auto& [key, value] :
+       {std::pair{"rolling_resistance_coeff", rolling_resistance_coeff},
+        std::pair{"wheel_torque_accuracy_fraction", wheel_torque_accuracy_fraction},
+        std::pair{"wheel_radius_accuracy_fraction", wheel_radius_accuracy_fraction}}) {
+    if (!(value >= 0.0 && value < 0.5)) c.fail(key, "must be in [0, 0.5)");
+  }
   return c.message();
 }
 

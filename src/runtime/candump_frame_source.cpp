@@ -2,22 +2,30 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 
 namespace vmass::runtime {
 
-CandumpFrameSource::CandumpFrameSource(const std::string& path)
-    : path_(path), in_(path, std::ios::binary) {
-  reader_ = std::make_unique<can::CandumpReader>(in_, path);
+CandumpFrameSource::CandumpFrameSource(std::unique_ptr<std::istream> in, const std::string& path)
+    : path_(path), in_(std::move(in)) {
+  reader_ = std::make_unique<can::CandumpReader>(*in_, path);
 }
 
 std::unique_ptr<CandumpFrameSource> CandumpFrameSource::open(const std::string& path,
                                                              std::string* error) {
-  std::unique_ptr<CandumpFrameSource> s(new CandumpFrameSource(path));
-  if (!s->in_) {
+  auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
+  if (!*file) {
     if (error) *error = path + ": cannot open the log: " + std::strerror(errno);
     return nullptr;
   }
-  return s;
+  return std::unique_ptr<CandumpFrameSource>(new CandumpFrameSource(std::move(file), path));
+}
+
+std::unique_ptr<CandumpFrameSource> CandumpFrameSource::from_text(std::string text,
+                                                                  const std::string& name) {
+  return std::unique_ptr<CandumpFrameSource>(
+      new CandumpFrameSource(std::make_unique<std::istringstream>(std::move(text)), name));
 }
 
 FrameSource::Read CandumpFrameSource::read(can::CanFrame* frame, int /*timeout_ms*/) {

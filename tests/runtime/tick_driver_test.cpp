@@ -87,9 +87,9 @@ TEST(TickGrid, RoundsEachTickFromItsIndex) {
 }
 
 TEST(TickDriver, TicksFromTheFirstRecordSeeRecordsAtOrBeforeThem) {
-  LogInput in = speed_log(line("1700000000.500000", 36) + line("1700000000.515000", 72) +
-                          "garbage line\n" + line("1700000000.530000", 108) +
-                          line("1700000000.534000", 144));
+  LogInput in =
+      speed_log(line("1700000000.500000", 36) + line("1700000000.515000", 72) + "garbage line\n" +
+                line("1700000000.530000", 108) + line("1700000000.534000", 144));
   TickRun run;
   const std::vector<Tick> ticks = play(*in.source, 100.0, &run);
   const TimeUs t0 = 1700000000500000;

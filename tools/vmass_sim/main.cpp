@@ -2,6 +2,14 @@
 //
 //   vmass-sim --list
 //   vmass-sim --scenario NAME [--seed N] [--noise none|eps1|eps2|eps3] [--ideal-sensors] --out DIR
+//   vmass-sim --vehicle CLASS-SEED --scenario NAME [--seed N] [--realism all|none|...]
+//             [--knowledge known_scale|datasheet_scale] --out DIR
+//   vmass-sim --list-vehicles N [--first-seed S]
+//
+// With --vehicle, the drive is one of the vehicle population's (population_scenarios.hpp) on a
+// drawn vehicle (population.hpp), with every real-world effect on unless --realism says
+// otherwise, and DIR gets that vehicle's own DBC, its bus log and the config its engineer writes
+// from the datasheet (population_writer.hpp).
 //
 // Writes DIR/samples.csv, DIR/truth.csv, DIR/config.yaml (docs/formats.md), and the same drive
 // on CAN: DIR/drive.log (candump -l) with DIR/vehicle.dbc, which config.yaml's `can:` section
@@ -18,6 +26,9 @@
 #include "vmass/sim/can_writer.hpp"
 #include "vmass/sim/config_writer.hpp"
 #include "vmass/sim/csv_writer.hpp"
+#include "vmass/sim/population.hpp"
+#include "vmass/sim/population_scenarios.hpp"
+#include "vmass/sim/population_writer.hpp"
 #include "vmass/sim/scenario.hpp"
 #include "vmass/sim/simulator.hpp"
 #include "vmass/sim/static_ballast.hpp"
@@ -35,6 +46,60 @@ std::string joined_names() {
   std::string s;
   for (const std::string& n : vmass::sim::scenario_names()) s += (s.empty() ? "" : ", ") + n;
   return s;
+}
+
+std::string joined_population_names() {
+  std::string s;
+  for (const std::string& n : vmass::sim::population_scenario_names()) {
+    s += (s.empty() ? "" : ", ") + n;
+  }
+  return s;
+}
+
+struct PopulationArgs {
+  std::string vehicle_id, scenario, realism, knowledge, out_dir;
+  std::uint64_t seed = 1;
+};
+
+int run_population(const PopulationArgs& a) {
+  vmass::sim::DrawnVehicle vehicle;
+  std::string error;
+  if (!vmass::sim::parse_vehicle_id(a.vehicle_id, &vehicle, &error)) return fail(error);
+  const auto realism = vmass::sim::Realism::parse(a.realism.empty() ? "all" : a.realism);
+  if (!realism)
+    return fail("--realism: '" + a.realism + "' is not all, none, all-EFFECT or EFFECT+EFFECT");
+  vmass::sim::Knowledge knowledge = vmass::sim::Knowledge::kKnownScale;
+  if (a.knowledge == "datasheet_scale") {
+    knowledge = vmass::sim::Knowledge::kDatasheetScale;
+  } else if (!a.knowledge.empty() && a.knowledge != "known_scale") {
+    return fail("--knowledge: expected known_scale or datasheet_scale, got '" + a.knowledge + "'");
+  }
+  vmass::sim::PopulationRun run;
+  if (auto m = vmass::sim::make_population_run(vehicle, a.scenario, a.seed, *realism, &run);
+      !m.empty()) {
+    return fail(m + " (population scenarios: " + joined_population_names() + ")");
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(a.out_dir, ec);
+  if (ec) return fail("cannot create output directory " + a.out_dir + ": " + ec.message());
+  vmass::sim::SimulationResult result;
+  std::vector<vmass::can::CanFrame> frames;
+  if (auto m = vmass::sim::simulate_population_run(vehicle, run, knowledge, &result, &frames);
+      !m.empty()) {
+    return fail(m);
+  }
+  if (auto m =
+          vmass::sim::write_population_files(vehicle, run, knowledge, result, frames, a.out_dir);
+      !m.empty()) {
+    return fail(m);
+  }
+  std::cout << "vmass-sim: " << vmass::sim::describe_vehicle(vehicle) << "\n"
+            << "vmass-sim: " << run.scenario << ", seed " << a.seed << ", realism "
+            << realism->describe() << ", " << vmass::sim::knowledge_name(knowledge) << ": "
+            << frames.size() << " frames, mass " << result.truth.front().mass_kg << " -> "
+            << result.truth.back().mass_kg << " kg; wrote " << a.out_dir
+            << "/{vehicle.dbc,drive.log,config.yaml,truth.csv,samples.csv}\n";
+  return 0;
 }
 
 }  // namespace
@@ -55,6 +120,14 @@ int main(int argc, char** argv) {
   app.add_option("--noise", noise_name, "wheel-force noise set: none, eps1 (default), eps2, eps3");
   app.add_flag("--ideal-sensors", ideal, "no sensor noise, bias or quantisation (debugging)");
   app.add_option("--out", out_dir, "output directory (created if missing)");
+  PopulationArgs pop;
+  int list_vehicles = 0;
+  std::uint64_t first_seed = vmass::sim::kDevelopmentFirstSeed;
+  app.add_option("--vehicle", pop.vehicle_id, "population vehicle CLASS-SEED (e.g. suv-7)");
+  app.add_option("--realism", pop.realism, "effects: all (default), none, all-EFFECT, A+B");
+  app.add_option("--knowledge", pop.knowledge, "known_scale (default) or datasheet_scale");
+  app.add_option("--list-vehicles", list_vehicles, "list the first N population vehicles");
+  app.add_option("--first-seed", first_seed, "seed of the first vehicle of --list-vehicles");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -69,7 +142,27 @@ int main(int argc, char** argv) {
       const auto s = vmass::sim::find_scenario(n);
       std::cout << n << "  " << s->description << '\n';
     }
+    std::cout << "\npopulation scenarios (with --vehicle CLASS-SEED):\n";
+    for (const std::string& n : vmass::sim::population_scenario_names()) {
+      std::cout << n << "  " << vmass::sim::population_scenario_description(n) << '\n';
+    }
     return 0;
+  }
+  if (list_vehicles > 0) {
+    for (const auto& v : vmass::sim::draw_population(list_vehicles, first_seed)) {
+      std::cout << vmass::sim::describe_vehicle(v) << '\n';
+    }
+    return 0;
+  }
+  if (!pop.vehicle_id.empty()) {
+    if (scenario_name.empty()) {
+      return fail("--scenario NAME is required (one of: " + joined_population_names() + ")");
+    }
+    if (out_dir.empty()) return fail("--out DIR is required");
+    pop.scenario = scenario_name;
+    pop.seed = seed;
+    pop.out_dir = out_dir;
+    return run_population(pop);
   }
   if (scenario_name.empty())
     return fail("--scenario NAME is required (one of: " + joined_names() + ")");

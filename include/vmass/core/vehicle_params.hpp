@@ -27,6 +27,15 @@ struct VehicleParams {
   double rotating_mass_kg = 0.0;                     ///< J / r^2, constant
   std::vector<double> rotating_mass_by_gear_kg;      ///< optional, index gear - 1
   double gravity_mps2 = 9.80665;
+  // From the datasheet, optional (0 or infinity: unknown).
+  double max_mass_kg = std::numeric_limits<double>::infinity();  ///< maximum permissible mass
+  double drag_area_m2 = 0.0;                                     ///< C_d A
+  double air_density_kg_per_m3 = 1.2;
+  double rolling_resistance_coeff = 0.0;  ///< f_r
+  /// Declared accuracy (bound of the relative error) of the wheel-torque signal's scale and of
+  /// wheel_radius_m: only the mass scaled by them is observable from traction pairs.
+  double wheel_torque_accuracy_fraction = 0.0;
+  double wheel_radius_accuracy_fraction = 0.0;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
   /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.

@@ -4,8 +4,8 @@
 // Thread-safety: one reading thread.
 #pragma once
 
-#include <fstream>
 #include <functional>
+#include <istream>
 #include <memory>
 #include <string>
 
@@ -19,6 +19,9 @@ namespace vmass::runtime {
 class CandumpFrameSource final : public FrameSource {
  public:
   static std::unique_ptr<CandumpFrameSource> open(const std::string& path, std::string* error);
+  /// A log held in memory (e.g. a simulated drive's frames); `name` stands for the path in
+  /// messages.
+  static std::unique_ptr<CandumpFrameSource> from_text(std::string text, const std::string& name);
   Read read(can::CanFrame* frame, int timeout_ms) override;
   bool recorded() const override { return true; }
   std::string describe() const override { return "replay:" + path_; }
@@ -33,9 +36,9 @@ class CandumpFrameSource final : public FrameSource {
   }
 
  private:
-  explicit CandumpFrameSource(const std::string& path);
+  CandumpFrameSource(std::unique_ptr<std::istream> in, const std::string& path);
   std::string path_;
-  std::ifstream in_;
+  std::unique_ptr<std::istream> in_;
   std::unique_ptr<can::CandumpReader> reader_;
   std::string problem_;
 };

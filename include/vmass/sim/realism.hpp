@@ -37,7 +37,7 @@ enum class Effect : std::uint8_t {
   kAbsEsc,             ///< friction-limited braking (ABS) and ESC brake interventions
   kImuFilter,          ///< the accelerometer's own low-pass
   kImuBiasDrift,       ///< bias and random-walk drift
-  kImuNoise,           ///< white noise
+  kSensorNoise,        ///< white noise on every sensor signal
   kImuVibration,       ///< 8-25 Hz vibration growing with speed and roughness, engine orders
   kImuMounting,        ///< misalignment and a lever arm away from the centre of gravity
   kBodyPitchRoll,      ///< body pitch and roll per g tilt the accelerometer

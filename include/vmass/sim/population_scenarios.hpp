@@ -1,0 +1,52 @@
+// Population scenarios: the drives the accuracy suite runs on every vehicle of the population,
+// each built for the vehicle it runs on (a truck drives slower and turns gentler than a city
+// car; lateral manoeuvres are given as lateral-acceleration targets and turned into that
+// vehicle's steering) and deterministic per (vehicle, scenario, seed). Each scenario says what
+// it stresses (population_scenario_description):
+//
+//   paper_exp1_eps1..3  the paper's experiment 1 (ECE-15-like urban cycle on slopes), with its
+//                       wheel-force noise sets: resistive loads, slopes
+//   paper_exp2_eps1..3  the paper's experiment 2 (accelerating, braking, slaloms, turns)
+//   urban               stop-and-go: many short excitations, shifts, creep, a low-mu stop (ABS)
+//   highway             steady high speed, lane changes: little excitation, aero, vibration
+//   mountain            grades to 10 %, hairpins on banked curves, long braking (fade)
+//   heavy_rear_load     payload near capacity in the boot / rear: eq. (3) over-reads, bump stop
+//   windy               mean head or cross wind with gusts
+//   rough_road          rough surface and speed bumps: vibration and force pulses
+//   torque_bias         the ECU's torque reads 3 % high: what a biased torque does
+//   load_change         drive, stop, load added at a stop, drive: re-initialisation
+//   sensor_faults       a message missing, a frozen sensor, absurd values, bursts of unknown and
+//                       malformed frames
+// The seed draws the payload (people, luggage, cargo: how many and where) and the noise.
+//
+// Pure functions; thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vmass/sim/population.hpp"
+#include "vmass/sim/scenario.hpp"
+#include "vmass/sim/vehicle_bus.hpp"
+
+namespace vmass::sim {
+
+/// One drive of one population vehicle: the physics and what the bus adds.
+struct PopulationRun {
+  std::string scenario;
+  Scenario physics;  ///< its vehicle is the drawn vehicle's truth under the realism
+  BusOptions bus;    ///< realism and seed set; eps, torque bias and faults per scenario
+  Realism realism = Realism::all();
+};
+
+std::vector<std::string> population_scenario_names();
+/// One line: what the scenario stresses. Empty for an unknown name.
+std::string population_scenario_description(std::string_view name);
+
+/// Builds the run. "" or a message (unknown scenario, invalid result).
+std::string make_population_run(const DrawnVehicle& vehicle, std::string_view scenario,
+                                std::uint64_t seed, Realism realism, PopulationRun* out);
+
+}  // namespace vmass::sim

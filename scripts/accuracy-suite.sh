@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The accuracy suite, one command: installs what it needs, builds the release preset, runs the
+# vehicle population (30 vehicles x every scenario x 3 seeds, both kinds of knowledge, vmass's
+# estimators on their defaults and the baselines), the held-out vehicles, the ablation (each
+# realism effect alone on one nominal car) and a few drives for plots, and regenerates
+# docs/accuracy.md with docs/accuracy/*.png. About 30-40 minutes on 2 cores.
+#
+#   scripts/accuracy-suite.sh                     (from anywhere)
+#   VEHICLES=7 SEEDS=1 scripts/accuracy-suite.sh  (a quick look; the report says what it ran)
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cd "$repo"
+vehicles=${VEHICLES:-30}
+held_out=${HELD_OUT:-14}
+seeds=${SEEDS:-3}
+jobs=${JOBS:-$(nproc)}
+
+bash scripts/install-deps.sh
+cmake --preset release >/dev/null
+cmake --build --preset release -j "$jobs"
+bin=build/release/bin
+out=build/accuracy
+rm -rf "$out" && mkdir -p "$out/series"
+start=$(date +%s)
+
+"$bin/vmass-suite" --vehicles "$vehicles" --seeds "$seeds" --jobs "$jobs" --out "$out/population.jsonl"
+"$bin/vmass-suite" --held-out --vehicles "$held_out" --seeds "$seeds" --jobs "$jobs" \
+  --out "$out/held_out.jsonl"
+"$bin/vmass-suite" --ablation auto --scenarios paper_exp2_eps1,urban,highway --seeds "$seeds" \
+  --estimators rls,bayes,paper_lp --knowledge known_scale --jobs "$jobs" --out "$out/ablation.jsonl"
+"$bin/vmass-suite" --runs nominal:paper_exp2_eps3:1,nominal:paper_exp1_eps1:1,suv-18:urban:1,suv-4:heavy_rear_load:1 \
+  --knowledge known_scale --series-dir "$out/series" --jobs "$jobs" --out "$out/series.jsonl"
+
+rm -rf docs/accuracy
+/usr/bin/python3 "$bin/vmass-accuracy-report" --population "$out/population.jsonl" \
+  --held-out "$out/held_out.jsonl" --ablation "$out/ablation.jsonl" \
+  --series-dir "$out/series" --plots-dir docs/accuracy --out docs/accuracy.md \
+  --command "VEHICLES=$vehicles HELD_OUT=$held_out SEEDS=$seeds scripts/accuracy-suite.sh" \
+  --commit "$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo +local)" \
+  --population-hash "$("$bin/vmass-suite" --population-hash)" \
+  --seconds "$(( $(date +%s) - start ))"
+echo "accuracy-suite: wrote docs/accuracy.md ($(( $(date +%s) - start )) s)"

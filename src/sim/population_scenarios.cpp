@@ -1,0 +1,539 @@
+#include "vmass/sim/population_scenarios.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <utility>
+
+#include "vmass/sim/random_stream.hpp"
+
+namespace vmass::sim {
+
+namespace {
+
+constexpr double kKmh = 1.0 / 3.6;
+constexpr double kG = 9.80665;
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// How a class drives: speeds, accelerations and lateral accelerations it can and does reach.
+struct DrivingStyle {
+  double speed_scale = 1.0;  ///< of the car speeds
+  double max_speed_mps = 36.0;
+  double accel_scale = 1.0;  ///< of the car accelerations
+  double max_lateral_mps2 = 3.5;
+};
+
+DrivingStyle style_of(const DrawnVehicle& d) {
+  switch (d.vehicle_class) {
+    case VehicleClass::kHeavyTruck:
+      return {0.75, 23.6, 0.35, 2.0};
+    case VehicleClass::kVan:
+    case VehicleClass::kPickup:
+      return {0.95, 36.0, 0.75, 3.0};
+    case VehicleClass::kSuv:
+      return {1.0, 36.0, 0.9, 3.2};
+    default:
+      return {1.0, 36.0, 1.0, 3.5};
+  }
+}
+
+// Speed and steering references built segment by segment.
+class ProfileBuilder {
+ public:
+  ProfileBuilder(const DrawnVehicle& d, DrivingStyle style)
+      : ratio_(d.vehicle.steering_ratio), wheelbase_(d.vehicle.wheelbase_m), style_(style) {
+    speed_.push_back({0.0, 0.0});
+    steer_.push_back({0.0, 0.0});
+  }
+
+  double time() const { return t_; }
+  /// Start the drive already moving at car_mps (scaled).
+  void start_at(double car_mps) {
+    v_ = speed_for(car_mps);
+    speed_.front().y = v_;
+  }
+  double speed() const { return v_; }
+  double speed_for(double car_mps) const {
+    return std::min(car_mps * style_.speed_scale, style_.max_speed_mps);
+  }
+
+  void stand(double s) { hold(s); }
+  void cruise(double s) { hold(s); }
+  /// Accelerate (or brake) to car_mps (scaled for the class) at car_accel (scaled).
+  void change_to(double car_mps, double car_accel) {
+    const double v = car_mps <= 0.0 ? 0.0 : speed_for(car_mps);
+    const double accel = std::max(
+        0.2, car_accel * (v > v_ ? style_.accel_scale : std::max(0.5, style_.accel_scale)));
+    t_ += std::abs(v - v_) / accel;
+    v_ = v;
+    speed_.push_back({t_, v_});
+  }
+  /// A slalom at the current speed: lateral acceleration amplitude (capped for the class).
+  void slalom(double ay_mps2, double frequency_hz, double duration_s) {
+    sines_.push_back({t_, t_ + duration_s, steering_for(ay_mps2), frequency_hz});
+    cruise(duration_s);
+  }
+  /// A constant-radius turn at the current speed, entered and left over 2 s.
+  void turn(double ay_mps2, double hold_s, bool left) {
+    const double a = (left ? 1.0 : -1.0) * steering_for(ay_mps2);
+    steer_.push_back({t_, 0.0});
+    steer_.push_back({t_ + 2.0, a});
+    steer_.push_back({t_ + 2.0 + hold_s, a});
+    steer_.push_back({t_ + 4.0 + hold_s, 0.0});
+    cruise(4.0 + hold_s);
+  }
+
+  DriverProfile build(double duration_s) {
+    if (t_ < duration_s) hold(duration_s - t_);
+    DriverProfile p;
+    p.speed_mps = PiecewiseLinear(speed_);
+    p.steering_wheel_angle_rad = PiecewiseLinear(steer_);
+    p.steering_sines = sines_;
+    return p;
+  }
+
+ private:
+  void hold(double s) {
+    t_ += s;
+    speed_.push_back({t_, v_});
+  }
+  // Kinematic steering for a_y at the current speed: delta = l a_y / v^2.
+  double steering_for(double ay_mps2) const {
+    const double ay = std::min(ay_mps2, style_.max_lateral_mps2);
+    const double v = std::max(v_, 3.0);
+    return std::min(ratio_ * wheelbase_ * ay / (v * v), 450.0 * kDeg);
+  }
+
+  double ratio_, wheelbase_;
+  DrivingStyle style_;
+  double t_ = 0.0;
+  double v_ = 0.0;
+  std::vector<PiecewiseLinear::Point> speed_, steer_;
+  std::vector<SteeringSine> sines_;
+};
+
+// --- payload -------------------------------------------------------------------------------
+
+struct Seats {
+  double front_x, rear_x, boot_x, cargo_x0, cargo_x1, seat_z, cargo_z;
+  bool cargo;  ///< van, pickup, truck: a cargo area instead of seats and a boot
+};
+
+Seats seats_of(const DrawnVehicle& d) {
+  const double l = d.vehicle.wheelbase_m;
+  switch (d.vehicle_class) {
+    case VehicleClass::kVan:
+      return {0.10 * l, 0.10 * l, l + 0.4, 0.45 * l, l + 0.6, 0.9, 0.9, true};
+    case VehicleClass::kPickup:
+      return {0.35 * l, 0.60 * l, l + 0.4, 0.80 * l, l + 0.9, 0.9, 1.1, true};
+    case VehicleClass::kHeavyTruck:
+      return {0.02 * l, 0.02 * l, l, 0.25 * l, l + 1.5, 1.8, 1.9, true};
+    default:
+      return {0.45 * l, 0.78 * l, l + 0.45, 0.0, 0.0, 0.55, 0.75, false};
+  }
+}
+
+enum class PayloadKind : std::uint8_t { kTypical, kHeavyRear, kLoadChange };
+
+std::vector<LoadItem> people_and_luggage(const DrawnVehicle& d, RandomStream& rng, double fill) {
+  const Seats s = seats_of(d);
+  std::vector<LoadItem> items;
+  items.push_back({rng.uniform(70, 95), s.front_x, 0.37, s.seat_z});  // driver (left-hand drive)
+  const double capacity = d.payload_capacity_kg;
+  if (s.cargo) {
+    // Cargo spread over the cargo area, its centre somewhere along it.
+    const double cargo = std::max(0.0, fill * capacity - items[0].mass_kg);
+    const double x = rng.uniform(s.cargo_x0, s.cargo_x1);
+    items.push_back({cargo, x, rng.uniform(-0.2, 0.2), s.cargo_z});
+    return items;
+  }
+  if (rng.chance(fill)) items.push_back({rng.uniform(55, 95), s.front_x, -0.37, s.seat_z});
+  for (double y : {0.40, -0.40, 0.0}) {
+    if (rng.chance(fill * 0.8)) items.push_back({rng.uniform(20, 95), s.rear_x, y, s.seat_z});
+  }
+  items.push_back({rng.uniform(0.0, 60.0 * fill + 5.0), s.boot_x, 0.0, s.cargo_z});
+  return items;
+}
+
+std::vector<LoadItem> heavy_rear(const DrawnVehicle& d, RandomStream& rng) {
+  const Seats s = seats_of(d);
+  const double capacity = d.payload_capacity_kg * rng.uniform(0.85, 1.0);
+  std::vector<LoadItem> items = {{rng.uniform(70, 95), s.front_x, 0.37, s.seat_z}};
+  double left = capacity - items[0].mass_kg;
+  if (s.cargo) {
+    items.push_back(
+        {left, rng.uniform(0.5 * (s.cargo_x0 + s.cargo_x1), s.cargo_x1), 0.0, s.cargo_z});
+    return items;
+  }
+  for (double y : {0.40, -0.40}) {
+    const double m = std::min(left, rng.uniform(70, 95));
+    items.push_back({m, s.rear_x, y, s.seat_z});
+    left -= m;
+  }
+  items.push_back({std::max(0.0, left), s.boot_x, 0.0, s.cargo_z});
+  return items;
+}
+
+std::vector<LoadItem> added_at_stop(const DrawnVehicle& d, RandomStream& rng) {
+  const Seats s = seats_of(d);
+  const double mass = d.payload_capacity_kg * rng.uniform(0.3, 0.5);
+  if (s.cargo) return {{mass, rng.uniform(s.cargo_x0, s.cargo_x1), 0.0, s.cargo_z}};
+  return {{0.4 * mass, s.rear_x, 0.40, s.seat_z},
+          {0.35 * mass, s.rear_x, -0.40, s.seat_z},
+          {0.25 * mass, s.boot_x, 0.0, s.cargo_z}};
+}
+
+// Without payload_position, every item sits at the empty car's centre of gravity (eq. 3 holds).
+void place_items(std::vector<LoadItem>& items, const TrueVehicle& v, Realism realism) {
+  if (realism.has(Effect::kPayloadPosition)) return;
+  for (LoadItem& it : items) it = {it.mass_kg, v.empty.cg_x_m, 0.0, v.empty.cg_z_m};
+}
+
+// --- roads ---------------------------------------------------------------------------------
+
+PiecewiseLinear slope_percent(std::vector<PiecewiseLinear::Point> pts) {
+  for (auto& p : pts) p.y = grade_from_percent(p.y);
+  return PiecewiseLinear(std::move(pts));
+}
+
+// --- drives --------------------------------------------------------------------------------
+
+void paper_exp1(ProfileBuilder& b) {
+  // ECE-15 elementary urban cycle, twice, as in the paper's Fig. 4 (speeds in km/h).
+  for (int i = 0; i < 2; ++i) {
+    b.stand(5);
+    b.change_to(15 * kKmh, 1.04);
+    b.cruise(8);
+    b.change_to(0, 0.83);
+    b.stand(13);
+    b.change_to(32 * kKmh, 0.8);
+    b.cruise(24);
+    b.change_to(10 * kKmh, 0.8);
+    b.change_to(0, 0.9);
+    b.stand(8);
+    b.change_to(50 * kKmh, 0.6);
+    b.cruise(12);
+    b.change_to(35 * kKmh, 0.52);
+    b.cruise(13);
+    b.change_to(0, 0.97);
+  }
+}
+
+void paper_exp2(ProfileBuilder& b) {
+  b.stand(5);
+  b.change_to(14, 1.8);
+  b.slalom(2.8, 0.35, 16);
+  b.change_to(8, 1.5);
+  b.change_to(16, 1.2);
+  b.turn(3.0, 10, true);
+  b.change_to(10, 1.5);
+  b.turn(2.5, 7, false);
+  b.change_to(18, 1.3);
+  b.slalom(2.0, 0.25, 22);
+  b.change_to(12, 1.2);
+  b.turn(2.8, 8, true);
+  b.change_to(15, 1.0);
+  b.slalom(2.5, 0.4, 16);
+  b.change_to(0, 2.0);
+}
+
+void urban(ProfileBuilder& b, RandomStream& rng) {
+  b.stand(5);
+  while (b.time() < 270) {
+    b.change_to(rng.uniform(30, 50) * kKmh, rng.uniform(1.0, 2.0));
+    if (rng.chance(0.4)) {
+      b.change_to(rng.uniform(15, 20) * kKmh, 1.5);
+      b.turn(rng.uniform(1.2, 2.0), rng.uniform(2, 4), rng.chance(0.5));
+    } else {
+      b.cruise(rng.uniform(5, 15));
+    }
+    b.change_to(0, rng.uniform(1.5, 3.0));
+    b.stand(rng.uniform(4, 12));
+  }
+}
+
+void highway(ProfileBuilder& b, RandomStream& rng) {
+  b.cruise(2);
+  while (b.time() < 290) {
+    b.change_to(rng.uniform(105, 130) * kKmh, 0.4);
+    b.cruise(rng.uniform(8, 20));
+    if (rng.chance(0.6)) b.slalom(rng.uniform(0.5, 1.0), 0.2, 5);
+  }
+}
+
+void mountain(ProfileBuilder& b, RandomStream& rng) {
+  b.stand(3);
+  while (b.time() < 280) {
+    b.change_to(rng.uniform(50, 75) * kKmh, 1.2);
+    b.cruise(rng.uniform(6, 14));
+    b.change_to(rng.uniform(25, 35) * kKmh, rng.uniform(1.5, 2.5));
+    b.turn(rng.uniform(2.0, 3.0), rng.uniform(3, 6), rng.chance(0.5));
+  }
+}
+
+void rural(ProfileBuilder& b, RandomStream& rng) {
+  b.stand(3);
+  while (b.time() < 180) {
+    b.change_to(rng.uniform(55, 80) * kKmh, 1.2);
+    b.cruise(rng.uniform(8, 16));
+    if (rng.chance(0.5)) b.turn(rng.uniform(1.5, 2.5), rng.uniform(3, 6), rng.chance(0.5));
+    b.change_to(30 * kKmh, 1.5);
+    b.cruise(rng.uniform(6, 10));  // the village with the bumps
+  }
+}
+
+struct Built {
+  double duration_s = 200.0;
+  std::vector<LoadItem> payload;
+  std::vector<LoadChange> changes;
+};
+
+using Builder = std::function<void(const DrawnVehicle&, RandomStream&, ProfileBuilder&,
+                                   PopulationRun&, Built&)>;
+
+struct ScenarioEntry {
+  const char* name;
+  const char* description;
+  Builder build;
+};
+
+void typical(const DrawnVehicle& d, RandomStream& rng, Built& out) {
+  out.payload = people_and_luggage(d, rng, rng.uniform(0.1, 0.8));
+}
+
+void exp1(NoiseSet eps, const DrawnVehicle& d, RandomStream& rng, ProfileBuilder& b,
+          PopulationRun& run, Built& out) {
+  typical(d, rng, out);
+  paper_exp1(b);
+  out.duration_s = std::max(200.0, b.time() + 5.0);
+  run.bus.eps = eps;
+  run.physics.road.grade_rad = slope_percent({{0, 0},
+                                              {30, 0},
+                                              {80, 3},
+                                              {200, 3},
+                                              {300, -2},
+                                              {380, -2},
+                                              {520, 4},
+                                              {650, 4},
+                                              {750, 0},
+                                              {880, -3},
+                                              {1100, -3},
+                                              {1200, 0},
+                                              {1400, 2},
+                                              {1600, 0}});
+}
+
+void exp2(NoiseSet eps, const DrawnVehicle& d, RandomStream& rng, ProfileBuilder& b,
+          PopulationRun& run, Built& out) {
+  typical(d, rng, out);
+  paper_exp2(b);
+  out.duration_s = std::max(200.0, b.time() + 5.0);
+  run.bus.eps = eps;
+  run.physics.road.grade_rad = slope_percent({{0, 0},
+                                              {50, 0},
+                                              {200, 1.5},
+                                              {500, 0},
+                                              {800, -1},
+                                              {1100, 0},
+                                              {1500, 1},
+                                              {1900, 1},
+                                              {2200, 0}});
+  run.physics.road.bank_rad =
+      PiecewiseLinear({{0, 0}, {1200, 0}, {1250, 0.02}, {1450, 0.02}, {1500, 0}});
+}
+
+const std::vector<ScenarioEntry>& registry() {
+  using N = NoiseSet;
+  static const std::vector<ScenarioEntry> entries = {
+      {"paper_exp1_eps1",
+       "paper experiment 1, eps1 = N(0, 60^2) N on the wheel force: slopes, "
+       "resistive loads",
+       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp1(N::kEps1, d, g, b, r, o); }},
+      {"paper_exp1_eps2", "paper experiment 1, eps2 = N(300, 60^2) N: a force offset",
+       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp1(N::kEps2, d, g, b, r, o); }},
+      {"paper_exp1_eps3", "paper experiment 1, eps3 = U(0, 600) N: non-Gaussian force noise",
+       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp1(N::kEps3, d, g, b, r, o); }},
+      {"paper_exp2_eps1", "paper experiment 2, eps1: accelerating, braking, slaloms, turns",
+       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp2(N::kEps1, d, g, b, r, o); }},
+      {"paper_exp2_eps2", "paper experiment 2, eps2: a force offset",
+       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp2(N::kEps2, d, g, b, r, o); }},
+      {"paper_exp2_eps3", "paper experiment 2, eps3: non-Gaussian force noise",
+       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp2(N::kEps3, d, g, b, r, o); }},
+      {"urban", "stop-and-go: short excitations, shifts, creep, junction turns, a low-mu stop",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
+         typical(d, g, o);
+         urban(b, g);
+         o.duration_s = 300.0;
+         r.physics.road.grade_rad =
+             slope_percent({{0, 0}, {400, 2}, {900, -1}, {1600, 1}, {2400, 0}});
+         r.physics.road.friction =
+             PiecewiseLinear({{0, 1.0}, {1500, 1.0}, {1501, 0.35}, {1560, 0.35}, {1561, 1.0}});
+       }},
+      {"highway", "steady high speed and lane changes: little excitation, aero, vibration",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
+         typical(d, g, o);
+         b.start_at(110 * kKmh);
+         r.physics.initial_speed_mps = b.speed();
+         highway(b, g);
+         o.duration_s = 300.0;
+         r.physics.road.grade_rad = slope_percent({{0, 0}, {2000, 2}, {5000, -1.5}, {8000, 0}});
+       }},
+      {"mountain", "grades to 10 %, hairpins on banked curves, long braking (brake fade)",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
+         typical(d, g, o);
+         mountain(b, g);
+         o.duration_s = 300.0;
+         const double s = d.vehicle_class == VehicleClass::kHeavyTruck ? 0.6 : 1.0;
+         r.physics.road.grade_rad = slope_percent({{0, 0},
+                                                   {200, 8 * s},
+                                                   {1200, 10 * s},
+                                                   {1800, 6 * s},
+                                                   {2200, -8 * s},
+                                                   {3200, -10 * s},
+                                                   {3800, -4 * s},
+                                                   {4200, 0}});
+         r.physics.road.bank_rad = PiecewiseLinear({{0, 0},
+                                                    {600, 0},
+                                                    {650, 0.04},
+                                                    {800, 0.04},
+                                                    {850, 0},
+                                                    {2600, 0},
+                                                    {2650, -0.04},
+                                                    {2800, -0.04},
+                                                    {2850, 0}});
+       }},
+      {"heavy_rear_load", "payload near capacity in the boot / rear: eq. (3) over-reads, bump stop",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun&, Built& o) {
+         o.payload = heavy_rear(d, g);
+         paper_exp2(b);
+         o.duration_s = std::max(200.0, b.time() + 5.0);
+       }},
+      {"windy", "mean head or cross wind of 8-15 m/s with 3-5 m/s gusts",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
+         typical(d, g, o);
+         paper_exp2(b);
+         b.change_to(100 * kKmh, 1.0);
+         b.cruise(40);
+         b.change_to(0, 1.5);
+         o.duration_s = b.time() + 5.0;
+         const double w = g.uniform(8, 15);
+         const bool head = g.chance(0.5);
+         r.physics.wind = {head ? w : 0.3 * w, head ? 0.3 * w : w, g.uniform(3, 5),
+                           g.uniform(2, 6)};
+       }},
+      {"rough_road", "rural road on a rough surface, a village with speed bumps",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
+         typical(d, g, o);
+         rural(b, g);
+         o.duration_s = std::max(200.0, b.time() + 5.0);
+         r.physics.road.roughness = PiecewiseLinear(g.uniform(1.5, 3.0));
+         for (double x = 300; x < 6000; x += g.uniform(400, 900)) {
+           r.physics.road.bumps.push_back({x, g.uniform(1.0, 3.0)});
+         }
+       }},
+      {"torque_bias", "the ECU's torque reads 3 % high (known-scale config): what a bias does",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
+         typical(d, g, o);
+         paper_exp2(b);
+         o.duration_s = std::max(200.0, b.time() + 5.0);
+         r.bus.torque_report_scale *= 1.03;
+       }},
+      {"load_change", "drive, stop, 30-50 % of the payload capacity loaded at the stop, drive",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun&, Built& o) {
+         typical(d, g, o);
+         paper_exp2(b);
+         const double stop = b.time();
+         b.stand(25);
+         LoadChange c;
+         c.start_s = stop + 5.0;
+         c.duration_s = 5.0;
+         c.items = added_at_stop(d, g);
+         o.changes.push_back(c);
+         paper_exp2(b);
+         o.duration_s = b.time() + 5.0;
+       }},
+      {"sensor_faults",
+       "a message missing 3 s, a frozen sensor 10 s, absurd values, bursts of "
+       "unknown and malformed frames",
+       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
+         typical(d, g, o);
+         paper_exp2(b);
+         o.duration_s = std::max(200.0, b.time() + 5.0);
+         using K = BusFault::Kind;
+         r.bus.faults = {{K::kMissing, "dynamics", 40.0, 3.0},
+                         {K::kFrozen, d.sensors.lateral ? "steering" : "speed", 60.0, 10.0},
+                         {K::kAbsurd, "speed", 90.0, 0.05},
+                         {K::kAbsurd, "dynamics", 95.0, 0.05},
+                         {K::kUnknownBurst, "", 110.0, 0.5},
+                         {K::kMalformedBurst, "powertrain", 130.0, 0.5}};
+       }},
+  };
+  return entries;
+}
+
+void configure_driver(const DrawnVehicle& d, const MassProperties& mass, Scenario& s) {
+  const TrueVehicle& v = s.vehicle;
+  DriverParams& p = s.driver_params;
+  p.nominal_mass_kg = mass.mass_kg;
+  p.coast_band_n = 0.05 * mass.mass_kg;
+  p.hold_pressure_pa = 0.3 * kG * d.max_mass_kg / v.brake_gain_n_per_pa;
+  p.max_brake_pressure_pa = 1.0 * kG * d.max_mass_kg / v.brake_gain_n_per_pa;
+}
+
+}  // namespace
+
+std::vector<std::string> population_scenario_names() {
+  std::vector<std::string> out;
+  for (const ScenarioEntry& e : registry()) out.emplace_back(e.name);
+  return out;
+}
+
+std::string population_scenario_description(std::string_view name) {
+  for (const ScenarioEntry& e : registry()) {
+    if (name == e.name) return e.description;
+  }
+  return "";
+}
+
+std::string make_population_run(const DrawnVehicle& vehicle, std::string_view scenario,
+                                std::uint64_t seed, Realism realism, PopulationRun* out) {
+  const ScenarioEntry* entry = nullptr;
+  for (const ScenarioEntry& e : registry()) {
+    if (scenario == e.name) entry = &e;
+  }
+  if (entry == nullptr) return "unknown population scenario '" + std::string(scenario) + "'";
+  PopulationRun& run = *out;
+  run = PopulationRun{};
+  run.scenario = entry->name;
+  run.realism = realism;
+  run.bus.realism = realism;
+  run.bus.seed = seed;
+  Scenario& s = run.physics;
+  s.name = vehicle.id + "/" + entry->name;
+  s.description = entry->description;
+  s.vehicle = vehicle.true_vehicle(realism);
+  s.sensors = SensorSpec::ideal();
+  s.default_noise = NoiseSet::kNone;
+  // One stream per (vehicle, scenario, seed): the payload and the drive's random choices.
+  RandomStream rng(
+      seed * 1000003ULL + vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
+      hash_name(entry->name));
+  ProfileBuilder builder(vehicle, style_of(vehicle));
+  Built built;
+  entry->build(vehicle, rng, builder, run, built);
+  place_items(built.payload, s.vehicle, realism);
+  for (LoadChange& c : built.changes) place_items(c.items, s.vehicle, realism);
+  s.initial_payload = built.payload;
+  s.load_changes = built.changes;
+  s.duration_s = built.duration_s;
+  s.driver = builder.build(built.duration_s);
+  configure_driver(vehicle, s.mass_at(0.0), s);
+  if (!realism.has(Effect::kWind)) s.wind = WindParams{};
+  if (!realism.has(Effect::kRoadRoughness)) {
+    s.road.roughness = PiecewiseLinear(0.0);
+    s.road.bumps.clear();
+  }
+  return s.validate();
+}
+
+}  // namespace vmass::sim

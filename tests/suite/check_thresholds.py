@@ -1,0 +1,59 @@
+#!/usr/bin/env python3
+"""Checks a vmass-suite subset against regression thresholds.
+
+  check_thresholds.py RESULTS.jsonl THRESHOLDS.json
+
+THRESHOLDS.json: {"cells": [{"scenario", "estimator", "knowledge", "min_supported",
+"max_median_abs_final_pct", "min_coverage_end_pct" (optional)}, ...]}. Every cell must have at
+least min_supported supported runs, a median |final error| at most the maximum, and (when given)
+at least that share of runs whose interval covers the truth at the end. Any failed run fails.
+Prints one line per cell with the measured values; exit 1 on any violation.
+"""
+import json
+import sys
+
+
+def median(values):
+    v = sorted(values)
+    if not v:
+        return None
+    n = len(v)
+    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    rows = [json.loads(line) for line in open(sys.argv[1], encoding="utf-8") if line.strip()]
+    cells = json.load(open(sys.argv[2], encoding="utf-8"))["cells"]
+    failures = [r for r in rows if "error" in r]
+    for r in failures:
+        print(f"FAILED RUN {r['vehicle']} {r['scenario']} seed {r['seed']}: {r['error']}")
+    bad = len(failures)
+    for c in cells:
+        runs = [r for r in rows if r.get("scenario") == c["scenario"]
+                and r.get("estimator") == c["estimator"] and r.get("knowledge") == c["knowledge"]]
+        ok = [r for r in runs if r.get("supported")]
+        errs = [abs(r["final_error_pct"]) for r in ok if r.get("final_error_pct") is not None]
+        errs += [float("inf")] * (len(ok) - len(errs))
+        med = median(errs)
+        cov = [r.get("covered_end") for r in ok if r.get("covered_end") in (0, 1)]
+        cov_pct = 100.0 * sum(cov) / len(cov) if cov else None
+        problems = []
+        if len(ok) < c["min_supported"]:
+            problems.append(f"supported {len(ok)} < {c['min_supported']}")
+        if med is None or med > c["max_median_abs_final_pct"]:
+            problems.append(f"median |final| {med} > {c['max_median_abs_final_pct']}")
+        if "min_coverage_end_pct" in c and (cov_pct is None or cov_pct < c["min_coverage_end_pct"]):
+            problems.append(f"coverage at the end {cov_pct} < {c['min_coverage_end_pct']}")
+        status = "FAIL " + "; ".join(problems) if problems else "ok"
+        med_text = "-" if med is None else f"{med:.2f}"
+        cov_text = "-" if cov_pct is None else f"{cov_pct:.0f}"
+        print(f"{c['scenario']:<16} {c['estimator']:<11} {c['knowledge']:<15} supported "
+              f"{len(ok)}/{len(runs)}  median |final| {med_text} %  covers at end {cov_text} %  {status}")
+        bad += 1 if problems else 0
+    sys.exit(1 if bad else 0)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,357 @@
+#!/usr/bin/env python3
+"""vmass-accuracy-report: turns vmass-suite's JSON lines into docs/accuracy.md and its plots.
+
+  vmass-accuracy-report --population RUNS.jsonl [--held-out RUNS.jsonl] [--ablation RUNS.jsonl]
+                        [--series-dir DIR] [--plots-dir DIR] --out docs/accuracy.md
+                        [--command "..."] [--commit SHA] [--population-hash HASH]
+
+Every number in the report is computed here from the JSON lines; nothing is typed in by hand.
+Statistics are over the SUPPORTED runs of a (scenario, estimator, knowledge) cell; a run whose
+config the loader refuses is counted as unsupported, with the loader's reason.
+"""
+import argparse
+import collections
+import datetime
+import json
+import math
+import os
+import platform
+import sys
+
+ESTIMATOR_ORDER = ["rls", "bayes", "paper", "paper_lp", "vahidi2005", "fathy2008"]
+SCENARIO_ORDER = ["paper_exp1_eps1", "paper_exp1_eps2", "paper_exp1_eps3", "paper_exp2_eps1",
+                  "paper_exp2_eps2", "paper_exp2_eps3", "urban", "highway", "mountain",
+                  "heavy_rear_load", "windy", "rough_road", "torque_bias", "load_change",
+                  "sensor_faults"]
+KNOWLEDGE = ["known_scale", "datasheet_scale"]
+
+
+def load(path):
+    rows = []
+    with open(path, encoding="utf-8") as f:
+        for n, line in enumerate(f, 1):
+            line = line.strip()
+            if not line:
+                continue
+            try:
+                rows.append(json.loads(line))
+            except json.JSONDecodeError as e:
+                sys.exit(f"vmass-accuracy-report: {path}:{n}: not JSON: {e}")
+    return rows
+
+
+def finite(values):
+    return [v for v in values if v is not None and isinstance(v, (int, float)) and math.isfinite(v)]
+
+
+def percentile(values, q):
+    v = sorted(values)
+    if not v:
+        return None
+    if len(v) == 1:
+        return v[0]
+    pos = (len(v) - 1) * q
+    lo = math.floor(pos)
+    hi = math.ceil(pos)
+    if math.isinf(v[hi]) or lo == hi:
+        return v[hi] if math.isinf(v[hi]) else v[lo]
+    return v[lo] + (v[hi] - v[lo]) * (pos - lo)
+
+
+def fmt(v, digits=2, suffix=""):
+    if v is None:
+        return "-"
+    if isinstance(v, float) and math.isinf(v):
+        return "never"
+    return f"{v:.{digits}f}{suffix}"
+
+
+def share(values):
+    """Share of 1 among the 0/1 entries (entries of -1, no interval, are left out)."""
+    v = [x for x in values if x in (0, 1)]
+    if not v:
+        return None
+    return 100.0 * sum(v) / len(v)
+
+
+def median_time(values):
+    """Median of times where None means never: never counts as +inf."""
+    v = [math.inf if x is None else x for x in values]
+    return percentile(v, 0.5) if v else None
+
+
+def cell_stats(rows):
+    ok = [r for r in rows if r.get("supported")]
+    errs = finite([abs(r["final_error_pct"]) if r.get("final_error_pct") is not None else None
+                   for r in ok])
+    missing = sum(1 for r in ok if r.get("final_error_pct") is None)
+    abs_of = lambda key: finite([abs(r[key]) for r in ok if r.get(key) is not None])
+    s = {
+        "runs": len(rows),
+        "supported": len(ok),
+        "no_estimate": missing,
+        "median": percentile(errs, 0.5),
+        "p90": percentile(errs, 0.9),
+        "worst": max(errs) if errs else None,
+        "signed_median": percentile(finite([r.get("final_error_pct") for r in ok]), 0.5),
+        "err20": percentile(abs_of("error_20s_pct"), 0.5),
+        "err60": percentile(abs_of("error_60s_pct"), 0.5),
+        "t5": median_time([r.get("time_within_5_s") for r in ok]),
+        "t2": median_time([r.get("time_within_2_s") for r in ok]),
+        "t1": median_time([r.get("time_within_1_s") for r in ok]),
+        "rms": percentile(finite([r.get("rms_last_half_pct") for r in ok]), 0.5),
+        "cov20": share([r.get("covered_20s") for r in ok]),
+        "cov60": share([r.get("covered_60s") for r in ok]),
+        "covend": share([r.get("covered_end") for r in ok]),
+        "halfwidth": percentile(finite([r.get("halfwidth_end_pct") for r in ok]), 0.5),
+        "avail_long": percentile(finite([r.get("availability_longitudinal") for r in ok]), 0.5),
+        "avail_lat": percentile(finite([r.get("availability_lateral") for r in ok]), 0.5),
+        "conv_bad": None,
+    }
+    conv = finite([r.get("converged_outside_fraction") for r in ok])
+    if ok:
+        s["conv_bad"] = 100.0 * sum(1 for c in conv if c > 0.2) / len(ok)
+    return s
+
+
+def group(rows, *keys):
+    out = collections.defaultdict(list)
+    for r in rows:
+        out[tuple(r.get(k) for k in keys)].append(r)
+    return out
+
+
+def ordered_estimators(rows):
+    present = {r["estimator"] for r in rows if "estimator" in r}
+    return [e for e in ESTIMATOR_ORDER if e in present] + sorted(present - set(ESTIMATOR_ORDER))
+
+
+def scenario_order(rows):
+    present = {r.get("scenario") for r in rows}
+    return [s for s in SCENARIO_ORDER if s in present] + sorted(present - set(SCENARIO_ORDER))
+
+
+def headline_table(rows, knowledge, out):
+    rows = [r for r in rows if r.get("knowledge") == knowledge]
+    by = group(rows, "scenario", "estimator")
+    out.append("| scenario | estimator | supported | median \\|final\\| % | p90 % | worst % | "
+               "signed median % | \\|err\\| 20 s % | \\|err\\| 60 s % | within 5/2/1 % after (s) | "
+               "RMS last half % | covers at 20 s / 60 s / end % | half-width % | "
+               "availability long / lat % | converged then >20 % outside, % of runs |")
+    out.append("|" + "---|" * 15)
+    for scenario in scenario_order(rows):
+        for est in ordered_estimators(rows):
+            cell = by.get((scenario, est))
+            if not cell:
+                continue
+            s = cell_stats(cell)
+            out.append(
+                f"| {scenario} | {est} | {s['supported']}/{s['runs']} | {fmt(s['median'])} | "
+                f"{fmt(s['p90'])} | {fmt(s['worst'])} | {fmt(s['signed_median'])} | "
+                f"{fmt(s['err20'])} | {fmt(s['err60'])} | "
+                f"{fmt(s['t5'], 0)} / {fmt(s['t2'], 0)} / {fmt(s['t1'], 0)} | {fmt(s['rms'])} | "
+                f"{fmt(s['cov20'], 0)} / {fmt(s['cov60'], 0)} / {fmt(s['covend'], 0)} | "
+                f"{fmt(s['halfwidth'])} | "
+                f"{fmt(pct(s['avail_long']), 1)} / {fmt(pct(s['avail_lat']), 1)} | "
+                f"{fmt(s['conv_bad'], 0)} |")
+
+
+def pct(x):
+    return None if x is None else 100.0 * x
+
+
+def class_table(rows, estimator, knowledge, out):
+    rows = [r for r in rows if r.get("knowledge") == knowledge and r.get("estimator") == estimator]
+    classes = []
+    for r in rows:
+        if r.get("class") not in classes:
+            classes.append(r.get("class"))
+    by = group(rows, "scenario", "class")
+    out.append("| scenario | " + " | ".join(classes) + " |")
+    out.append("|---|" + "---|" * len(classes))
+    for scenario in scenario_order(rows):
+        cells = []
+        for c in classes:
+            s = cell_stats(by.get((scenario, c), []))
+            cells.append(f"{fmt(s['median'])} ({s['supported']}/{s['runs']})")
+        out.append(f"| {scenario} | " + " | ".join(cells) + " |")
+
+
+def unsupported_table(rows, out):
+    vmass = [r for r in rows if r.get("estimator") == "bayes" and r.get("knowledge") == "known_scale"]
+    reasons = collections.Counter()
+    vehicles = collections.defaultdict(set)
+    for r in vmass:
+        if r.get("supported"):
+            continue
+        reason = r.get("unsupported_reason", "")
+        reason = reason.split(": ", 1)[1] if ": " in reason else reason
+        reasons[reason] += 1
+        vehicles[reason].add(r["vehicle"])
+    total = len(vmass)
+    out.append(f"{sum(reasons.values())} of {total} bayes/known-scale runs are unsupported:\n")
+    out.append("| loader's reason | runs | vehicles |")
+    out.append("|---|---|---|")
+    for reason, n in reasons.most_common():
+        out.append(f"| `{reason}` | {n} | {', '.join(sorted(vehicles[reason]))} |")
+
+
+def ablation_table(rows, out):
+    rows = [r for r in rows if r.get("knowledge") == "known_scale"]
+    labels = []
+    for r in rows:
+        if r.get("realism") not in labels:
+            labels.append(r.get("realism"))
+    ests = ordered_estimators(rows)
+    by = group(rows, "realism", "estimator")
+    base = {e: cell_stats(by.get(("none", e), [])) for e in ests}
+    vehicles = sorted({r["vehicle"] for r in rows})
+    scenarios = scenario_order(rows)
+    out.append(f"Vehicle {', '.join(vehicles)}; scenarios {', '.join(scenarios)}; "
+               f"{len({r['seed'] for r in rows})} seeds; known scale. Each cell: median signed final "
+               f"error % (median |error| %) over the runs; the last column the change of bayes's "
+               f"median |error| against no effect.\n")
+    out.append("| effects | " + " | ".join(ests) + " | bayes cost (points) |")
+    out.append("|---|" + "---|" * (len(ests) + 1))
+    for label in labels:
+        cells = []
+        for e in ests:
+            s = cell_stats(by.get((label, e), []))
+            cells.append(f"{fmt(s['signed_median'])} ({fmt(s['median'])})")
+        b = cell_stats(by.get((label, "bayes"), []))
+        cost = None
+        if b["median"] is not None and base.get("bayes", {}).get("median") is not None:
+            cost = b["median"] - base["bayes"]["median"]
+        out.append(f"| {label} | " + " | ".join(cells) + f" | {fmt(cost)} |")
+
+
+def plot_series(series_dir, plots_dir, out):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        out.append("(matplotlib is missing: no plots)")
+        return
+    files = sorted(f for f in os.listdir(series_dir) if f.endswith(".csv"))
+    runs = collections.defaultdict(dict)
+    for f in files:
+        stem = f[:-4]
+        est = next((e for e in sorted(ESTIMATOR_ORDER, key=len, reverse=True)
+                    if stem.endswith("_" + e)), stem.rsplit("_", 1)[1])
+        runs[stem[:-len(est) - 1]][est] = os.path.join(series_dir, f)
+    os.makedirs(plots_dir, exist_ok=True)
+    for run, ests in sorted(runs.items()):
+        fig, axes = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+        truth_done = False
+        for est, path in sorted(ests.items(), key=lambda kv: ESTIMATOR_ORDER.index(kv[0])
+                                if kv[0] in ESTIMATOR_ORDER else 99):
+            t, truth, m, lo, hi = [], [], [], [], []
+            with open(path, encoding="utf-8") as f:
+                next(f)
+                for line in f:
+                    c = line.rstrip("\n").split(",")
+                    if c[2] == "":
+                        continue
+                    t.append(float(c[0]))
+                    truth.append(float(c[1]))
+                    m.append(float(c[2]))
+                    lo.append(float(c[3]) if c[3] else float("nan"))
+                    hi.append(float(c[4]) if c[4] else float("nan"))
+            if not t:
+                continue
+            if not truth_done:
+                axes[0].plot(t, truth, "k-", lw=2, label="truth")
+                truth_done = True
+            line, = axes[0].plot(t, m, lw=1, label=est)
+            if est in ("bayes", "rls"):
+                axes[0].fill_between(t, lo, hi, color=line.get_color(), alpha=0.15)
+            axes[1].plot(t, [100.0 * (a - b) / b for a, b in zip(m, truth)], lw=1,
+                         color=line.get_color(), label=est)
+        for band in (1, 2, 5):
+            axes[1].axhspan(-band, band, color="green", alpha=0.06)
+        axes[0].set_ylabel("mass, kg")
+        axes[1].set_ylabel("error, %")
+        axes[1].set_xlabel("time, s")
+        axes[1].set_ylim(-15, 15)
+        axes[0].legend(fontsize=7, ncol=3)
+        axes[0].set_title(run.replace("_", " "), fontsize=9)
+        fig.tight_layout()
+        name = run + ".png"
+        fig.savefig(os.path.join(plots_dir, name), dpi=90)
+        plt.close(fig)
+        rel = os.path.relpath(os.path.join(plots_dir, name), os.path.dirname(os.path.abspath(args.out)))
+        out.append(f"![{run}]({rel})\n")
+
+
+def main():
+    global args
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--population", required=True)
+    p.add_argument("--held-out")
+    p.add_argument("--ablation")
+    p.add_argument("--series-dir")
+    p.add_argument("--plots-dir")
+    p.add_argument("--out", required=True)
+    p.add_argument("--command", default="")
+    p.add_argument("--commit", default="")
+    p.add_argument("--population-hash", default="")
+    p.add_argument("--seconds", default="")
+    args = p.parse_args()
+
+    population = load(args.population)
+    errors = [r for r in population if "error" in r]
+    out = []
+    out.append("# Accuracy on the vehicle population\n")
+    out.append("Generated by `scripts/accuracy-suite.sh` (tools/vmass_suite/accuracy_report.py): "
+               "every number below comes from the suite's JSON lines. Do not edit by hand.\n")
+    out.append(f"- commit `{args.commit}`, population definition hash `{args.population_hash}` "
+               "(src/sim/vehicle_class.cpp, src/sim/population.cpp)")
+    out.append(f"- command: `{args.command}`")
+    out.append(f"- generated {datetime.date.today().isoformat()} on {platform.node() or 'this machine'}"
+               f" ({os.cpu_count()} cores){', in ' + args.seconds + ' s' if args.seconds else ''}")
+    vehicles = sorted({r['vehicle'] for r in population})
+    scenarios = scenario_order(population)
+    out.append(f"- {len(vehicles)} vehicles x {len(scenarios)} scenarios x "
+               f"{len({r['seed'] for r in population})} seeds; estimators on their defaults; "
+               f"{len(errors)} failed runs\n")
+    out.append("Columns: final error over the supported runs (median, 90th percentile, worst of |error|, "
+               "and the median signed error); |error| 20 s and 60 s after the drive starts; the median "
+               "time after which the estimate stays within 5/2/1 % (\"never\" when more than half never "
+               "do); RMS error over the last half; the share of runs whose 95 % interval covers the truth "
+               "at 20 s, 60 s and the end; the interval's half-width at the end; the median availability "
+               "per block; the share of runs where `converged` is followed by more than 20 % of ticks "
+               "with the truth outside the interval.\n")
+    for k in KNOWLEDGE:
+        if not any(r.get("knowledge") == k for r in population):
+            continue
+        out.append(f"## {k.replace('_', ' ').capitalize()} population\n")
+        headline_table(population, k, out)
+        out.append("")
+    out.append("## Per vehicle class (bayes, known scale): median |final error| % (supported/runs)\n")
+    class_table(population, "bayes", "known_scale", out)
+    out.append("")
+    out.append("## Unsupported vehicles\n")
+    unsupported_table(population, out)
+    out.append("")
+    if args.held_out:
+        held = load(args.held_out)
+        out.append("## Held-out vehicles (never tuned on)\n")
+        for k in KNOWLEDGE:
+            if any(r.get("knowledge") == k for r in held):
+                out.append(f"### {k.replace('_', ' ')}\n")
+                headline_table(held, k, out)
+                out.append("")
+    if args.ablation:
+        out.append("## Ablation: each effect alone on one nominal car\n")
+        ablation_table(load(args.ablation), out)
+        out.append("")
+    if args.series_dir and os.path.isdir(args.series_dir):
+        out.append("## Chosen drives (in the style of the paper's Figs. 8 and 10)\n")
+        plot_series(args.series_dir, args.plots_dir or os.path.join(os.path.dirname(args.out), "accuracy"), out)
+    with open(args.out, "w", encoding="utf-8") as f:
+        f.write("\n".join(out) + "\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,296 @@
+// vmass-suite: the accuracy suite. Runs population vehicles x scenarios x seeds, each under
+// both kinds of knowledge, with vmass's estimators on their defaults and the baselines, and
+// writes one JSON line per (run, knowledge, estimator) for tools/vmass_suite/accuracy_report.py.
+//
+//   vmass-suite [--vehicles N] [--first-seed S | --held-out] [--seeds K] [--scenarios A,B]
+//               [--estimators rls,bayes,...] [--knowledge known_scale,datasheet_scale]
+//               [--realism all|none|...] [--estimator-yaml FILE] [--jobs J] --out FILE.jsonl
+//   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
+//   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
+//   vmass-suite --list-scenarios | --population-hash
+//
+// --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
+// --series-dir DIR writes per-tick CSVs (10 Hz) of the runs named by --series RUN,... where
+// RUN is VEHICLE:SCENARIO:SEED. Exit codes: 0 ok, 1 a run failed, 2 usage or input error.
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+
+#include "suite_run.hpp"
+#include "vmass/sim/population.hpp"
+#include "vmass/sim/population_scenarios.hpp"
+#include "vmass/sim/vehicle_class.hpp"
+
+namespace fs = std::filesystem;
+using vmass::sim::Effect;
+using vmass::sim::Realism;
+
+namespace {
+
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+// The first compact car with every input the estimator reads and a passive rear axle.
+std::string nominal_vehicle() {
+  for (std::uint64_t seed = 1; seed < 10000; ++seed) {
+    const auto v = vmass::sim::draw_vehicle(vmass::sim::VehicleClass::kCompact, seed);
+    const auto& s = v.sensors;
+    if (s.deflection && s.brake_pressure && s.lateral &&
+        s.torque == vmass::sim::TorqueSignal::kWheelTorque &&
+        s.speed == vmass::sim::SpeedSignal::kEsc && !v.vehicle.rear_levelling &&
+        v.vehicle.powertrain.transmission != vmass::sim::Transmission::kElectric) {
+      return v.id;
+    }
+  }
+  return "compact-1";
+}
+
+struct Options {
+  int vehicles = 30;
+  std::uint64_t first_seed = vmass::sim::kDevelopmentFirstSeed;
+  bool held_out = false;
+  int seeds = 3;
+  std::string scenarios, estimators, knowledge, realism = "all", estimator_yaml_path, out;
+  std::string ablation, series_dir, series, runs;
+  int jobs = 0;
+};
+
+bool parse_knowledge(const std::string& text, std::vector<vmass::sim::Knowledge>* out) {
+  out->clear();
+  for (const std::string& k : split(text)) {
+    if (k == "known_scale") {
+      out->push_back(vmass::sim::Knowledge::kKnownScale);
+    } else if (k == "datasheet_scale") {
+      out->push_back(vmass::sim::Knowledge::kDatasheetScale);
+    } else {
+      return false;
+    }
+  }
+  return !out->empty();
+}
+
+std::string read_text(const std::string& path, bool* ok) {
+  std::ifstream in(path, std::ios::binary);
+  *ok = static_cast<bool>(in);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The runs named by --runs (VEHICLE:SCENARIO:SEED), each with its series when asked.
+std::string plan_runs(const Options& o, const vmass::suite::RunSpec& base,
+                      std::vector<vmass::suite::RunSpec>* specs) {
+  const auto realism = Realism::parse(o.realism);
+  if (!realism) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
+  for (const std::string& run : split(o.runs)) {
+    const auto a = run.find(':');
+    const auto b = run.rfind(':');
+    if (a == std::string::npos || a == b)
+      return "--runs: '" + run + "' is not VEHICLE:SCENARIO:SEED";
+    vmass::suite::RunSpec spec = base;
+    spec.vehicle_id = run.substr(0, a) == "nominal" ? nominal_vehicle() : run.substr(0, a);
+    spec.scenario = run.substr(a + 1, b - a - 1);
+    const std::string seed = run.substr(b + 1);
+    if (seed.empty() || seed.find_first_not_of("0123456789") != std::string::npos) {
+      return "--runs: '" + run + "': the seed must be a number";
+    }
+    spec.seed = std::stoull(seed);
+    spec.realism = *realism;
+    spec.realism_label = o.realism;
+    vmass::sim::DrawnVehicle probe;
+    std::string error;
+    if (!vmass::sim::parse_vehicle_id(spec.vehicle_id, &probe, &error)) return "--runs: " + error;
+    if (vmass::sim::population_scenario_description(spec.scenario).empty()) {
+      return "--runs: unknown scenario '" + spec.scenario + "'";
+    }
+    specs->push_back(spec);
+  }
+  return "";
+}
+
+// Expands the options into the list of runs. "" or a usage error.
+std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
+  vmass::suite::RunSpec base;
+  base.estimators = o.estimators.empty() ? vmass::suite::default_estimators() : split(o.estimators);
+  if (!o.knowledge.empty() && !parse_knowledge(o.knowledge, &base.knowledge)) {
+    return "--knowledge: expected known_scale and/or datasheet_scale";
+  }
+  if (!o.estimator_yaml_path.empty()) {
+    bool ok = false;
+    base.estimator_yaml = read_text(o.estimator_yaml_path, &ok);
+    if (!ok) return o.estimator_yaml_path + ": cannot read";
+  }
+  base.series_dir = o.series_dir;
+  std::vector<std::string> scenarios =
+      o.scenarios.empty() ? vmass::sim::population_scenario_names() : split(o.scenarios);
+  for (const std::string& s : scenarios) {
+    if (vmass::sim::population_scenario_description(s).empty()) {
+      return "--scenarios: unknown scenario '" + s + "'";
+    }
+  }
+  std::vector<std::pair<std::string, Realism>> realisms;
+  std::vector<std::string> vehicles;
+  if (!o.runs.empty()) return plan_runs(o, base, specs);
+  if (!o.ablation.empty()) {
+    vehicles.push_back(o.ablation == "auto" ? nominal_vehicle() : o.ablation);
+    realisms.emplace_back("none", Realism::none());
+    for (Effect e : vmass::sim::all_effects()) {
+      realisms.emplace_back("only:" + std::string(vmass::sim::effect_name(e)), Realism::only(e));
+    }
+    realisms.emplace_back("all", Realism::all());
+  } else {
+    const auto r = Realism::parse(o.realism);
+    if (!r) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
+    realisms.emplace_back(o.realism, *r);
+    const std::uint64_t first = o.held_out ? vmass::sim::kHeldOutFirstSeed : o.first_seed;
+    for (const auto& v : vmass::sim::draw_population(o.vehicles, first)) vehicles.push_back(v.id);
+  }
+  for (const std::string& v : vehicles) {
+    vmass::sim::DrawnVehicle probe;
+    std::string error;
+    if (!vmass::sim::parse_vehicle_id(v, &probe, &error)) return "--ablation: " + error;
+  }
+  for (const auto& [label, realism] : realisms) {
+    for (const std::string& v : vehicles) {
+      for (const std::string& s : scenarios) {
+        for (int seed = 1; seed <= o.seeds; ++seed) {
+          vmass::suite::RunSpec spec = base;
+          spec.vehicle_id = v;
+          spec.scenario = s;
+          spec.seed = static_cast<std::uint64_t>(seed);
+          spec.realism = realism;
+          spec.realism_label = label;
+          const std::string id = v + ":" + s + ":" + std::to_string(seed);
+          if (o.series.find(id) == std::string::npos) spec.series_dir.clear();
+          specs->push_back(spec);
+        }
+      }
+    }
+  }
+  return "";
+}
+
+int run_all(const std::vector<vmass::suite::RunSpec>& specs, int jobs,
+            const std::string& out_path) {
+  std::ofstream out(out_path, std::ios::trunc);
+  if (!out) {
+    std::cerr << "vmass-suite: " << out_path << ": cannot write\n";
+    return kExitUsage;
+  }
+  const fs::path work_root =
+      fs::temp_directory_path() / ("vmass-suite-" + std::to_string(::getpid()));
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> failures{0};
+  std::mutex out_mutex;
+  auto worker = [&](int id) {
+    const fs::path dir = work_root / std::to_string(id);
+    fs::create_directories(dir);
+    for (std::size_t i = next++; i < specs.size(); i = next++) {
+      const vmass::suite::RunResult r = vmass::suite::run_suite_case(specs[i], dir.string());
+      std::lock_guard<std::mutex> lock(out_mutex);
+      if (!r.error.empty()) {
+        ++failures;
+        std::cerr << "vmass-suite: " << specs[i].vehicle_id << " " << specs[i].scenario << " seed "
+                  << specs[i].seed << ": " << r.error << "\n";
+      }
+      out << vmass::suite::to_json_lines(r);
+      if ((i + 1) % 25 == 0 || i + 1 == specs.size()) {
+        std::cerr << "vmass-suite: " << (i + 1) << "/" << specs.size() << " runs\n";
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker, j);
+  for (auto& t : threads) t.join();
+  std::error_code ec;
+  fs::remove_all(work_root, ec);
+  out.close();
+  if (!out) {
+    std::cerr << "vmass-suite: " << out_path << ": write failed\n";
+    return kExitFailure;
+  }
+  return failures > 0 ? kExitFailure : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vmass-suite: the accuracy suite over the vehicle population"};
+  Options o;
+  bool list = false, hash = false;
+  app.add_option("--vehicles", o.vehicles, "population vehicles (classes in turn)")
+      ->check(CLI::Range(1, 10000));
+  app.add_option("--first-seed", o.first_seed, "seed of the first vehicle");
+  app.add_flag("--held-out", o.held_out, "the held-out vehicles (never tune on them)");
+  app.add_option("--seeds", o.seeds, "seeds per (vehicle, scenario)")->check(CLI::Range(1, 100));
+  app.add_option("--scenarios", o.scenarios, "comma-separated (default: all)");
+  app.add_option("--estimators", o.estimators, "comma-separated (default: rls,bayes,baselines)");
+  app.add_option("--knowledge", o.knowledge, "known_scale,datasheet_scale (default both)");
+  app.add_option("--realism", o.realism, "effects: all (default), none, all-EFFECT, A+B");
+  app.add_option("--estimator-yaml", o.estimator_yaml_path,
+                 "YAML appended to every config (an estimator: section to try)");
+  app.add_option("--ablation", o.ablation, "VEHICLE or auto: each effect alone on one vehicle");
+  app.add_option("--series-dir", o.series_dir, "directory for per-tick CSVs of --series runs");
+  app.add_option("--series", o.series, "runs VEHICLE:SCENARIO:SEED,... to write series for");
+  app.add_option("--runs", o.runs,
+                 "only these runs, VEHICLE:SCENARIO:SEED,... (VEHICLE nominal: "
+                 "the ablation's car)");
+  app.add_option("--jobs", o.jobs, "threads (default: all cores)");
+  app.add_option("--out", o.out, "JSON lines output");
+  app.add_flag("--list-scenarios", list, "list the population scenarios and exit");
+  app.add_flag("--population-hash", hash, "print the population definition's hash and exit");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+  if (list) {
+    for (const auto& n : vmass::sim::population_scenario_names()) {
+      std::cout << n << "  " << vmass::sim::population_scenario_description(n) << "\n";
+    }
+    return 0;
+  }
+  if (hash) {
+    std::cout << vmass::sim::population_definition_hash() << "\n";
+    return 0;
+  }
+  if (o.out.empty()) {
+    std::cerr << "vmass-suite: --out FILE is required\n";
+    return kExitUsage;
+  }
+  std::vector<vmass::suite::RunSpec> specs;
+  if (auto m = plan(o, &specs); !m.empty()) {
+    std::cerr << "vmass-suite: " << m << "\n";
+    return kExitUsage;
+  }
+  if (!o.series_dir.empty()) fs::create_directories(o.series_dir);
+  const int jobs =
+      o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::cerr << "vmass-suite: " << specs.size() << " runs on " << jobs << " threads, population "
+            << vmass::sim::population_definition_hash() << "\n";
+  return run_all(specs, jobs, o.out);
+}

@@ -1,0 +1,70 @@
+// One run of the accuracy suite: one population vehicle on one scenario with one seed, under
+// one realism, scored for each knowledge (known scale, datasheet scale) and each estimator
+// (vmass rls and bayes on their defaults, and the baselines), all on the same frames.
+//
+// The path is the product's: the vehicle's DBC and the config its engineer writes go to a
+// work directory and are loaded with the real loaders (load_config, load_can_inputs); the bus
+// is turned into candump text and read back by CandumpReader and the runtime's tick driver, exactly
+// as `vmass-replay --log` does; the Pipeline steps on those samples. A config the loader refuses
+// (an input or section the estimator does not support yet) makes the run "unsupported" for
+// vmass with the loader's message; the baselines are scored only where the config loads (they
+// read the same decoded samples).
+//
+// Thread-safe for distinct work directories.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "accuracy_metrics.hpp"
+#include "vmass/sim/datasheet_config.hpp"
+#include "vmass/sim/realism.hpp"
+
+namespace vmass::suite {
+
+struct RunSpec {
+  std::string vehicle_id;  ///< "<class>-<seed>"
+  std::string scenario;
+  std::uint64_t seed = 1;
+  sim::Realism realism = sim::Realism::all();
+  std::string realism_label = "all";  ///< for the output (e.g. "only:driveline_mode")
+  std::vector<sim::Knowledge> knowledge = {sim::Knowledge::kKnownScale,
+                                           sim::Knowledge::kDatasheetScale};
+  std::vector<std::string> estimators;  ///< rls, bayes, and baseline names
+  std::string estimator_yaml;           ///< appended to every config (experiments)
+  std::string series_dir;               ///< "": no per-tick series; else CSVs go there
+};
+
+struct EstimatorResult {
+  std::string estimator;
+  sim::Knowledge knowledge = sim::Knowledge::kKnownScale;
+  bool supported = true;
+  std::string unsupported_reason;
+  AccuracyResult accuracy;
+  double availability_longitudinal = AccuracyResult::kNaN;
+  double availability_lateral = AccuracyResult::kNaN;
+  long accepted_longitudinal = 0, accepted_lateral = 0;
+  long pairs_used = 0;
+  std::string status_end, reason_end;
+  double initial_mass_kg = AccuracyResult::kNaN;  ///< vmass: the last prior (static or empty)
+};
+
+struct RunResult {
+  RunSpec spec;
+  std::string vehicle_class;
+  std::string error;  ///< the run itself failed (a bug): every result is missing
+  double duration_s = 0.0;
+  double initial_true_mass_kg = 0.0;
+  std::vector<EstimatorResult> results;
+};
+
+/// The estimators run by default: rls, bayes, then every baseline.
+std::vector<std::string> default_estimators();
+
+RunResult run_suite_case(const RunSpec& spec, const std::string& work_dir);
+
+/// One JSON object per estimator result, one per line.
+std::string to_json_lines(const RunResult& run);
+
+}  // namespace vmass::suite
