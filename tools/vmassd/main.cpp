@@ -1,4 +1,5 @@
-// vmassd: the real-time vehicle mass estimation daemon (see daemon.hpp for its threads).
+// vmassd: the real-time vehicle mass estimation daemon. Only the command line is here: the
+// daemon is vmass::service::run_daemon (vmass/service/daemon.hpp: its threads and how it ticks).
 //
 //   vmassd --config FILE [--can IFACE | --replay LOG [--speed X|max] | --samples CSV
 //          [--speed X|max]] [--lcm-url URL] [--state-file PATH] [--no-restore]
@@ -12,12 +13,12 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include "daemon.hpp"
 #include "exit_code.hpp"
+#include "vmass/service/daemon.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"vmassd: live vehicle mass estimation from CAN data, published on LCM"};
-  vmassd::Options o;
+  vmass::service::DaemonOptions o;
   app.add_option("--config", o.config_path, "vmass YAML config")->required();
   auto* can = app.add_option("--can", o.can_interface,
                              "SocketCAN interface (default: daemon.can_interface, can0)");
@@ -38,5 +39,5 @@ int main(int argc, char** argv) {
   // Diagnostics go to stderr (the journal under systemd); stdout stays free.
   spdlog::set_default_logger(spdlog::stderr_color_mt("vmassd"));
   spdlog::set_pattern("vmassd %^%l%$: %v");
-  return vmassd::run(o);
+  return vmass::service::run_daemon(o);
 }

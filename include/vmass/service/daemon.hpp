@@ -1,6 +1,8 @@
-// vmassd's threads around the vmass_service pieces.
+// The daemon: vmassd's threads around the ticking front end (vmass_runtime), LCM publishing,
+// state persistence and systemd; tools/vmassd/main.cpp only parses the command line.
 //
-//   receive thread    InputSource::read/fetch -> SpscQueue<InputRecord> (a live bus: frames
+//   receive thread    runtime::InputSource::read/fetch -> SpscQueue<InputRecord> (a live bus:
+//   frames
 //                     re-stamped into the tick clock, dropped and counted when the queue is
 //                     full; a recording: paced by its log time / speed, never dropped)
 //   estimator thread  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME) at tick_rate * speed;
@@ -29,17 +31,11 @@
 // readers (samples CSV, candump lines).
 #pragma once
 
-#include <memory>
-#include <optional>
 #include <string>
 
-#include "vmass/config/config.hpp"
-#include "vmass/runtime/input_source.hpp"
-#include "vmass/service/service_config.hpp"
+namespace vmass::service {
 
-namespace vmassd {
-
-struct Options {
+struct DaemonOptions {
   std::string config_path;
   std::string can_interface;  ///< --can
   std::string replay_log;     ///< --replay (candump -l)
@@ -50,8 +46,9 @@ struct Options {
   bool no_restore = false;    ///< --no-restore
 };
 
-/// Runs the daemon until a signal or the end of a recording. Returns the process exit code
-/// (0 orderly stop, 1 start-up failure, 2 configuration error).
-int run(const Options& options);
+/// Runs the daemon until SIGTERM/SIGINT or the end of a recording. Returns the process exit
+/// code (tools/common/exit_code.hpp): 0 orderly stop, 1 start-up failure (SocketCAN or LCM
+/// cannot be opened), 2 usage, configuration or input error.
+int run_daemon(const DaemonOptions& options);
 
-}  // namespace vmassd
+}  // namespace vmass::service
