@@ -24,7 +24,6 @@
 #include "vmass/runtime/tick_step.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
-#ifdef VMASS_SIM_BIN
 namespace vmass::service {
 namespace {
 
@@ -84,4 +83,3 @@ TEST(HotPath, EstimatorSideOfTheCanInputAllocatesNothing) {
 
 }  // namespace
 }  // namespace vmass::service
-#endif
