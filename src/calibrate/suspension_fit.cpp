@@ -518,7 +518,7 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
   // ---- Per step: residuals, outliers, the linear model's mass error; the ranges.
   const double per_kg = geometry.wheel_force_per_kg();
   for (std::size_t k = 0; k < n; ++k) {
-    StepResult s;
+    BallastStepFit s;
     s.step = steps[k];
     s.force_n = data.force_n[k];
     s.linear_residual_m = (data.z_mm[k] - linear_prediction(lin, data.force_n[k])) * 1e-3;
@@ -544,7 +544,7 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
   }
   cal.calibrated_range_kg = steps.back().added_mass_kg;
   cal.linear_range_kg = 0.0;
-  for (const StepResult& s : cal.steps) {
+  for (const BallastStepFit& s : cal.steps) {
     if (s.step.added_mass_kg <= 0.0 || s.outlier) continue;
     if (std::abs(s.linear_mass_error) > options.linear_tolerance) break;
     cal.linear_range_kg = s.step.added_mass_kg;
