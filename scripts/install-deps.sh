@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   # toolchain
-  build-essential cmake ninja-build pkg-config git clang-format
+  build-essential cmake ninja-build pkg-config git clang-format clang-tidy
   # libraries
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libsystemd-dev
   libboost-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs everything, builds with warnings as errors and runs every test (what CI runs).
+# Installs everything, checks the format, builds with warnings as errors, runs clang-tidy and
+# every test (what CI runs).
 #   scripts/test.sh            (from anywhere; run as root or with sudo rights for apt)
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -8,6 +9,8 @@ cd "$repo"
 bash scripts/install-deps.sh
 bash scripts/install-python-deps.sh
 
+bash scripts/check-format.sh              # clang-format: every C++ file formatted
 cmake --preset ci
 cmake --build --preset ci -j "$(nproc)"
-ctest --preset ci -j "$(nproc)"
+bash scripts/check-tidy.sh build/ci       # clang-tidy: bug-finding checks, functions <= 80 lines
+ctest --preset ci -j "$(nproc)"           # includes core_purity and the exit-code convention

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "vmass/config/suspension_section.hpp"
 #include "vmass/core/static_initializer.hpp"
 
 namespace vmass::calibrate {
@@ -17,12 +18,6 @@ std::string num(double v, const char* format = "%.10g") {
 }
 
 std::string json_num(double v) { return std::isfinite(v) ? num(v) : std::string("null"); }
-
-std::string yaml_num(double v) {
-  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
-  if (std::isnan(v)) return ".nan";
-  return num(v);
-}
 
 std::string json_str(const std::string& s) {
   std::string out = "\"";
@@ -121,31 +116,27 @@ std::vector<MassCheckRow> mass_check(const SuspensionCalibration& calibration,
 
 std::string suspension_yaml(const SuspensionCalibration& calibration,
                             const std::vector<std::string>& header_comment) {
-  const SuspensionParams p = calibration.suspension_params();
+  SuspensionParams p = calibration.suspension_params();
   const bool prog = calibration.progressive.detected;
   const Estimate& c =
       prog ? calibration.progressive.stiffness_n_per_m : calibration.linear.stiffness_n_per_m;
   const Estimate& z0 =
       prog ? calibration.progressive.zero_offset_m : calibration.linear.zero_offset_m;
   auto std_comment = [](const Estimate& e, double scale, const char* unit) {
-    return std::isfinite(e.std) ? "  # std " + num(e.std * scale, "%.3g") + " " + unit
-                                : std::string();
+    return std::isfinite(e.std) ? "std " + num(e.std * scale, "%.3g") + " " + unit : std::string();
   };
+  const bool linear_range = p.linear_range_kg > 0.0;
+  if (!linear_range) p.linear_range_kg = 1e-3;  // the loader wants > 0
+  const SuspensionComments comments{
+      std_comment(c, 1.0, "N/m"),
+      std_comment(z0, 1.0, "m"),
+      prog ? std_comment(calibration.progressive.knee_m, 1.0, "m") : "no bump stop",
+      prog ? std_comment(calibration.progressive.rate_n_per_m2, 1.0, "N/m^2") : "",
+      linear_range ? "" : "no step within tolerance",
+      ""};
   std::string out;
   for (const std::string& line : header_comment) out += "# " + line + "\n";
-  out += "suspension:\n";
-  out +=
-      "  stiffness_n_per_m: " + yaml_num(p.stiffness_n_per_m) + std_comment(c, 1.0, "N/m") + "\n";
-  out +=
-      "  empty_deflection_m: " + yaml_num(p.empty_deflection_m) + std_comment(z0, 1.0, "m") + "\n";
-  out += "  progressive_knee_m: " + yaml_num(p.progressive_knee_m) +
-         (prog ? std_comment(calibration.progressive.knee_m, 1.0, "m") : "  # no bump stop") + "\n";
-  out += "  progressive_rate_n_per_m2: " + yaml_num(p.progressive_rate_n_per_m2) +
-         (prog ? std_comment(calibration.progressive.rate_n_per_m2, 1.0, "N/m^2") : "") + "\n";
-  out += "  linear_range_kg: " + yaml_num(p.linear_range_kg > 0.0 ? p.linear_range_kg : 1e-3) +
-         (p.linear_range_kg > 0.0 ? "" : "  # no step within tolerance") + "\n";
-  out += "  calibrated_range_kg: " + yaml_num(p.calibrated_range_kg) + "\n";
-  return out;
+  return out + suspension_section_yaml(p, comments);
 }
 
 std::string calibration_json(const SuspensionCalibration& cal,

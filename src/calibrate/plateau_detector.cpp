@@ -56,6 +56,7 @@ std::string PlateauParams::validate() const {
   return c.message();
 }
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 PlateauDetection detect_plateaus(const std::vector<DeflectionPoint>& series,
                                  const PlateauParams& params) {
   PlateauDetection out;

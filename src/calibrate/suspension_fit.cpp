@@ -282,6 +282,7 @@ SuspensionParams SuspensionCalibration::suspension_params() const {
   return s;
 }
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
                                    const LoadGeometry& geometry,
                                    const SuspensionFitOptions& options) {

@@ -507,6 +507,7 @@ class Parser {
     current_message_ = index;
   }
 
+  // NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
   void parse_sg() {
     const int line = statement_line_;
     if (current_message_ == kNone) {

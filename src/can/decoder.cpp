@@ -114,6 +114,7 @@ bool compile_signal(const Signal& sg, int length_bytes, CompiledSignal& out, std
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 std::optional<Decoder> Decoder::compile(Database database, std::string* error) {
   Decoder d;
   d.db_ = std::move(database);

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
 
 namespace vmass {
@@ -30,15 +31,17 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
 }
 
 void read_suspension(YamlReader r, SuspensionParams* s) {
-  r.require("stiffness_n_per_m", &s->stiffness_n_per_m);
-  r.read("empty_deflection_m", &s->empty_deflection_m);
-  r.read("progressive_knee_m", &s->progressive_knee_m);
-  r.read("progressive_rate_n_per_m2", &s->progressive_rate_n_per_m2);
-  r.read("linear_range_kg", &s->linear_range_kg);
-  r.read("calibrated_range_kg", &s->calibrated_range_kg);
+  for (const SuspensionField& field : kSuspensionFields) {
+    if (field.required) {
+      r.require(field.key, &(s->*field.member));
+    } else {
+      r.read(field.key, &(s->*field.member));
+    }
+  }
   r.reject_unknown_keys();
 }
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 void read_estimator(YamlReader r, EstimatorParams* e) {
   std::string type = std::string(regressor_type_name(e->type));
   r.read("type", &type);
@@ -96,8 +99,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     f.read("accel_noise_std_mps2", &p.velocity_filter.accel_noise_std_mps2);
     f.read("speed_noise_std_mps", &p.velocity_filter.speed_noise_std_mps);
     f.read("pseudo_lateral_velocity_std_mps", &p.velocity_filter.pseudo_lateral_velocity_std_mps);
-    f.read("initial_lateral_velocity_std_mps",
-           &p.velocity_filter.initial_lateral_velocity_std_mps);
+    f.read("initial_lateral_velocity_std_mps", &p.velocity_filter.initial_lateral_velocity_std_mps);
     f.read("accel_x_offset_walk_mps2_per_sqrt_s",
            &p.velocity_filter.accel_x_offset_walk_mps2_per_sqrt_s);
     f.read("initial_accel_x_offset_std_mps2", &p.velocity_filter.initial_accel_x_offset_std_mps2);

@@ -33,7 +33,7 @@ bool parse_double(const std::string& text, double* out) {
 }  // namespace
 
 YamlReader::YamlReader(YAML::Node node, std::string file, std::string path)
-    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {
+    : node_(node), file_(std::move(file)), path_(std::move(path)) {
   if (node_ && !node_.IsNull() && !node_.IsMap()) {
     std::ostringstream msg;
     msg << file_ << ":" << line_of(node_) << ": " << (path_.empty() ? "<top>" : path_)
@@ -75,8 +75,8 @@ void YamlReader::read(const std::string& key, double* out) {
   if (!has(key)) return;
   YAML::Node n = value_node(key);
   if (!n.IsScalar() || !parse_double(n.Scalar(), out) || std::isnan(*out)) {
-    fail(key, "expected a number, got '" + (n.IsScalar() ? n.Scalar() : std::string("<map>")) +
-                  "'");
+    fail(key,
+         "expected a number, got '" + (n.IsScalar() ? n.Scalar() : std::string("<map>")) + "'");
   }
 }
 

@@ -176,6 +176,12 @@ bool BayesEstimator::update(const RegressionPair& pair) {
   pending_.add(pair);
   ++pending_count_;
   if (pending_count_ < params_.batch_size) return false;
+  return absorb_pending();
+}
+
+bool BayesEstimator::flush() { return pending_count_ > 0 && absorb_pending(); }
+
+bool BayesEstimator::absorb_pending() {
   NigPosterior next;
   const bool ok = try_conjugate_update(posterior_, pending_, next);
   if (ok) {

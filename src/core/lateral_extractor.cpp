@@ -41,6 +41,7 @@ void LateralExtractor::reset() {
   has_last_time_ = false;
 }
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 Extraction LateralExtractor::step(const Sample& s) {
   Extraction out;
   if (!params_.enabled) {

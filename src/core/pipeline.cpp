@@ -68,6 +68,13 @@ void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   prior_reason_ = reason;
   prior_ = prior;
   estimate_.initial_mass_kg = prior.mass_kg;
+  estimate_.prior_reason = reason;
+}
+
+bool Pipeline::flush() {
+  if (!has_prior_ || !regressor_->flush()) return false;
+  refresh_belief();
+  return true;
 }
 
 StepResult Pipeline::step(const Sample& sample) {
@@ -205,6 +212,7 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   const RegressorState state = regressor_->state();
   estimate_.mass_known = true;
   estimate_.initial_mass_kg = prior.mass_kg;
+  estimate_.prior_reason = StatusReason::kRestored;
   estimate_.mass_kg = state.mass_kg;
   estimate_.mu_n = state.mu_n;
   estimate_.mass_std_kg = state.mass_std_kg;
@@ -227,7 +235,10 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   if (params_.estimator.longitudinal.enabled) needed |= LongitudinalExtractor::kRequired;
   if (params_.estimator.lateral.enabled) needed |= LateralExtractor::kRequired;
   estimate_.invalid_inputs = needed & ~sample.valid;
+  refresh_belief();
+}
 
+void Pipeline::refresh_belief() {
   if (!has_prior_) {
     estimate_.status = EstimateStatus::kInitialising;
     estimate_.reason = StatusReason::kWaitingForStandstill;

@@ -28,7 +28,7 @@ std::string_view daemon_state_name(DaemonState s) {
   return "unknown";
 }
 
-void copy_counters(const SourceCounters& c, DaemonStatus* s) {
+void copy_counters(const runtime::SourceCounters& c, DaemonStatus* s) {
   s->frames_received = c.received.load(std::memory_order_relaxed);
   s->frames_decoded = c.decoded.load(std::memory_order_relaxed);
   s->frames_unknown = c.unknown.load(std::memory_order_relaxed);
@@ -38,7 +38,8 @@ void copy_counters(const SourceCounters& c, DaemonStatus* s) {
   s->source_reopens = c.reopens.load(std::memory_order_relaxed);
 }
 
-void to_lcm(const TickRecord& record, std::string_view estimator, vmass::mass_estimate_t* out) {
+void to_lcm(const runtime::TickRecord& record, std::string_view estimator,
+            vmass::mass_estimate_t* out) {
   const Estimate& e = record.estimate;
   out->utime = e.time_us;
   out->tick = record.tick;
@@ -153,7 +154,7 @@ bool LcmPublisher::publish(const std::string& channel, const Msg& msg) {
   return true;
 }
 
-bool LcmPublisher::on_tick(const TickRecord& record) {
+bool LcmPublisher::on_tick(const runtime::TickRecord& record) {
   bool ok = true;
   if (decimation_count_ == 0) {
     to_lcm(record, estimator_, &estimate_msg_);

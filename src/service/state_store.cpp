@@ -47,6 +47,66 @@ std::string errno_text(const std::string& what, const std::string& path) {
   return path + ": " + what + ": " + std::strerror(errno);
 }
 
+/// The saved-state file's fields after `type` and `prior_reason`: the one list that
+/// format_state writes and parse_state reads (the file's order).
+struct StateField {
+  enum class Kind : std::uint8_t { kReal, kInteger, kFlag };
+  const char* key;
+  Kind kind;
+  double* (*real)(PipelineSnapshot&);
+  long* (*integer)(PipelineSnapshot&);
+  bool* (*flag)(PipelineSnapshot&);
+};
+
+constexpr StateField real(const char* key, double* (*at)(PipelineSnapshot&)) {
+  return {key, StateField::Kind::kReal, at, nullptr, nullptr};
+}
+constexpr StateField integer(const char* key, long* (*at)(PipelineSnapshot&)) {
+  return {key, StateField::Kind::kInteger, nullptr, at, nullptr};
+}
+constexpr StateField flag(const char* key, bool* (*at)(PipelineSnapshot&)) {
+  return {key, StateField::Kind::kFlag, nullptr, nullptr, at};
+}
+
+using S = PipelineSnapshot;
+constexpr StateField kStateFields[] = {
+    flag("has_prior", [](S& s) { return &s.has_prior; }),
+    real("prior_mass_kg", [](S& s) { return &s.prior.mass_kg; }),
+    real("prior_mass_std_kg", [](S& s) { return &s.prior.mass_std_kg; }),
+    real("prior_mu_n", [](S& s) { return &s.prior.mu_n; }),
+    real("prior_mu_std_n", [](S& s) { return &s.prior.mu_std_n; }),
+    integer("pairs_used", [](S& s) { return &s.pairs_used; }),
+    real("rls_theta_0", [](S& s) { return &s.rls_theta[0]; }),
+    real("rls_theta_1", [](S& s) { return &s.rls_theta[1]; }),
+    real("rls_covariance_0", [](S& s) { return &s.rls_covariance[0]; }),
+    real("rls_covariance_1", [](S& s) { return &s.rls_covariance[1]; }),
+    real("rls_covariance_2", [](S& s) { return &s.rls_covariance[2]; }),
+    real("rls_covariance_3", [](S& s) { return &s.rls_covariance[3]; }),
+    real("nig_mean_0", [](S& s) { return &s.nig_mean[0]; }),
+    real("nig_mean_1", [](S& s) { return &s.nig_mean[1]; }),
+    real("nig_scaled_covariance_0", [](S& s) { return &s.nig_scaled_covariance[0]; }),
+    real("nig_scaled_covariance_1", [](S& s) { return &s.nig_scaled_covariance[1]; }),
+    real("nig_scaled_covariance_2", [](S& s) { return &s.nig_scaled_covariance[2]; }),
+    real("nig_scaled_covariance_3", [](S& s) { return &s.nig_scaled_covariance[3]; }),
+    real("nig_shape", [](S& s) { return &s.nig_shape; }),
+    real("nig_scale", [](S& s) { return &s.nig_scale; }),
+    flag("has_reference", [](S& s) { return &s.has_reference; }),
+    real("reference_deflection_m", [](S& s) { return &s.reference_deflection_m; }),
+    real("reference_deflection_std_m", [](S& s) { return &s.reference_deflection_std_m; }),
+    integer("longitudinal_ticks", [](S& s) { return &s.blocks[0].ticks; }),
+    integer("longitudinal_candidates", [](S& s) { return &s.blocks[0].candidates; }),
+    integer("longitudinal_accepted", [](S& s) { return &s.blocks[0].accepted; }),
+    integer("longitudinal_rejected_innovation",
+            [](S& s) { return &s.blocks[0].rejected_innovation; }),
+    integer("lateral_ticks", [](S& s) { return &s.blocks[1].ticks; }),
+    integer("lateral_candidates", [](S& s) { return &s.blocks[1].candidates; }),
+    integer("lateral_accepted", [](S& s) { return &s.blocks[1].accepted; }),
+    integer("lateral_rejected_innovation", [](S& s) { return &s.blocks[1].rejected_innovation; }),
+};
+static_assert(kBlockCount == 2, "kStateFields lists the counters of two blocks");
+/// Optional (files from before the grade check): "nan" or absent = unknown grade.
+constexpr const char* kGradeKey = "reference_grade_accel_mps2";
+
 }  // namespace
 
 std::uint64_t state_fingerprint(const PipelineParams& p) {
@@ -62,7 +122,7 @@ std::uint64_t state_fingerprint(const PipelineParams& p) {
 }
 
 std::string format_state(const SavedState& state) {
-  const PipelineSnapshot& s = state.snapshot;
+  PipelineSnapshot s = state.snapshot;  // the table's accessors take a mutable snapshot
   std::string out;
   out += std::string(kMagic) + " " + std::to_string(kVersion) + "\n";
   char hex[32];
@@ -70,182 +130,159 @@ std::string format_state(const SavedState& state) {
   out += std::string("fingerprint ") + hex + "\n";
   put_int(&out, "saved_time_us", state.saved_time_us);
   out += std::string("type ") + std::string(regressor_type_name(s.type)) + "\n";
-  put_int(&out, "has_prior", s.has_prior ? 1 : 0);
   put_int(&out, "prior_reason", static_cast<int>(s.prior_reason));
-  put(&out, "prior_mass_kg", s.prior.mass_kg);
-  put(&out, "prior_mass_std_kg", s.prior.mass_std_kg);
-  put(&out, "prior_mu_n", s.prior.mu_n);
-  put(&out, "prior_mu_std_n", s.prior.mu_std_n);
-  put_int(&out, "pairs_used", s.pairs_used);
-  put(&out, "rls_theta_0", s.rls_theta[0]);
-  put(&out, "rls_theta_1", s.rls_theta[1]);
-  for (int i = 0; i < 4; ++i) {
-    put(&out, ("rls_covariance_" + std::to_string(i)).c_str(), s.rls_covariance[i]);
+  for (const StateField& field : kStateFields) {
+    switch (field.kind) {
+      case StateField::Kind::kReal:
+        put(&out, field.key, *field.real(s));
+        break;
+      case StateField::Kind::kInteger:
+        put_int(&out, field.key, *field.integer(s));
+        break;
+      case StateField::Kind::kFlag:
+        put_int(&out, field.key, *field.flag(s) ? 1 : 0);
+        break;
+    }
   }
-  put(&out, "nig_mean_0", s.nig_mean[0]);
-  put(&out, "nig_mean_1", s.nig_mean[1]);
-  for (int i = 0; i < 4; ++i) {
-    put(&out, ("nig_scaled_covariance_" + std::to_string(i)).c_str(), s.nig_scaled_covariance[i]);
-  }
-  put(&out, "nig_shape", s.nig_shape);
-  put(&out, "nig_scale", s.nig_scale);
-  put_int(&out, "has_reference", s.has_reference ? 1 : 0);
-  put(&out, "reference_deflection_m", s.reference_deflection_m);
-  put(&out, "reference_deflection_std_m", s.reference_deflection_std_m);
-  put(&out, "reference_grade_accel_mps2", s.reference_grade_accel_mps2);  // may be nan
-  for (int b = 0; b < kBlockCount; ++b) {
-    const std::string prefix = std::string(block_name(static_cast<Block>(b))) + "_";
-    const BlockCounters& c = s.blocks[static_cast<std::size_t>(b)];
-    put_int(&out, (prefix + "ticks").c_str(), c.ticks);
-    put_int(&out, (prefix + "candidates").c_str(), c.candidates);
-    put_int(&out, (prefix + "accepted").c_str(), c.accepted);
-    put_int(&out, (prefix + "rejected_innovation").c_str(), c.rejected_innovation);
-  }
+  put(&out, kGradeKey, s.reference_grade_accel_mps2);  // may be nan
   std::snprintf(hex, sizeof hex, "%016" PRIx64, fnv1a(out.data(), out.size()));
   out += std::string("checksum ") + hex + "\n";
   return out;
 }
 
-bool parse_state(const std::string& text, SavedState* state, std::string* error) {
-  auto fail = [&](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  const std::size_t checksum_at = text.rfind("checksum ");
-  if (checksum_at == std::string::npos || (checksum_at > 0 && text[checksum_at - 1] != '\n')) {
-    return fail("no checksum line (truncated file?)");
+namespace {
+
+using Values = std::map<std::string, std::string>;
+
+/// The checksum line matches the text before it. "" when it does, else why not.
+std::string check_checksum(const std::string& text, std::size_t* checksum_at) {
+  *checksum_at = text.rfind("checksum ");
+  if (*checksum_at == std::string::npos || (*checksum_at > 0 && text[*checksum_at - 1] != '\n')) {
+    return "no checksum line (truncated file?)";
   }
-  {
-    std::uint64_t expected = 0;
-    const char* begin = text.data() + checksum_at + 9;
-    const char* end = text.data() + text.size();
-    while (end > begin && (end[-1] == '\n' || end[-1] == '\r')) --end;
-    const auto r = std::from_chars(begin, end, expected, 16);
-    if (r.ec != std::errc() || r.ptr != end) return fail("malformed checksum line");
-    if (fnv1a(text.data(), checksum_at) != expected)
-      return fail("checksum mismatch (corrupt file)");
-  }
-  std::map<std::string, std::string> values;
-  std::istringstream in(text.substr(0, checksum_at));
+  std::uint64_t expected = 0;
+  const char* begin = text.data() + *checksum_at + 9;
+  const char* end = text.data() + text.size();
+  while (end > begin && (end[-1] == '\n' || end[-1] == '\r')) --end;
+  const auto r = std::from_chars(begin, end, expected, 16);
+  if (r.ec != std::errc() || r.ptr != end) return "malformed checksum line";
+  if (fnv1a(text.data(), *checksum_at) != expected) return "checksum mismatch (corrupt file)";
+  return "";
+}
+
+/// "key value" lines into a map. "" on success, else "line N: ...".
+std::string split_lines(const std::string& text, Values* values) {
+  std::istringstream in(text);
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
     const std::size_t space = line.find(' ');
     if (space == std::string::npos) {
-      return fail("line " + std::to_string(line_no) + ": expected 'key value'");
+      return "line " + std::to_string(line_no) + ": expected 'key value'";
     }
-    values[line.substr(0, space)] = line.substr(space + 1);
+    (*values)[line.substr(0, space)] = line.substr(space + 1);
+  }
+  return "";
+}
+
+/// Typed reads of the values; each returns "" or why the key is missing or malformed.
+struct ValueReader {
+  const Values& values;
+
+  std::string text(const std::string& key, std::string* out) const {
+    const auto it = values.find(key);
+    if (it == values.end()) return "missing key " + key;
+    *out = it->second;
+    return "";
+  }
+  std::string real(const std::string& key, double* out) const {
+    std::string v;
+    if (std::string e = text(key, &v); !e.empty()) return e;
+    const auto r = std::from_chars(v.data(), v.data() + v.size(), *out);
+    // from_chars does not read "inf"/"nan" spellings of every libc; they are invalid here.
+    if (r.ec != std::errc() || r.ptr != v.data() + v.size()) {
+      return key + ": not a number: '" + v + "'";
+    }
+    return "";
+  }
+  std::string integer(const std::string& key, long long* out) const {
+    std::string v;
+    if (std::string e = text(key, &v); !e.empty()) return e;
+    const auto r = std::from_chars(v.data(), v.data() + v.size(), *out);
+    if (r.ec != std::errc() || r.ptr != v.data() + v.size()) {
+      return key + ": not an integer: '" + v + "'";
+    }
+    return "";
+  }
+};
+
+/// fingerprint, saved_time_us, type and prior_reason: the fields outside the table.
+std::string read_header_fields(const ValueReader& in, SavedState* out) {
+  std::string fingerprint, type;
+  long long n = 0;
+  if (std::string e = in.text("fingerprint", &fingerprint); !e.empty()) return e;
+  const auto r = std::from_chars(fingerprint.data(), fingerprint.data() + fingerprint.size(),
+                                 out->fingerprint, 16);
+  if (r.ec != std::errc()) return "fingerprint: not hexadecimal";
+  if (std::string e = in.integer("saved_time_us", &n); !e.empty()) return e;
+  out->saved_time_us = n;
+  if (std::string e = in.text("type", &type); !e.empty()) return e;
+  if (type != "rls" && type != "bayes") return "type: expected rls or bayes, got '" + type + "'";
+  out->snapshot.type = type == "rls" ? RegressorType::kRls : RegressorType::kBayes;
+  if (std::string e = in.integer("prior_reason", &n); !e.empty()) return e;
+  if (n < 0 || n > static_cast<long long>(StatusReason::kRestored)) {
+    return "prior_reason: out of range";
+  }
+  out->snapshot.prior_reason = static_cast<StatusReason>(n);
+  return "";
+}
+
+std::string read_table_field(const ValueReader& in, const StateField& field, PipelineSnapshot* s) {
+  long long n = 0;
+  switch (field.kind) {
+    case StateField::Kind::kReal:
+      return in.real(field.key, field.real(*s));
+    case StateField::Kind::kInteger:
+      if (std::string e = in.integer(field.key, &n); !e.empty()) return e;
+      *field.integer(*s) = static_cast<long>(n);
+      return "";
+    case StateField::Kind::kFlag:
+      if (std::string e = in.integer(field.key, &n); !e.empty()) return e;
+      *field.flag(*s) = n != 0;
+      return "";
+  }
+  return "";
+}
+
+}  // namespace
+
+bool parse_state(const std::string& text, SavedState* state, std::string* error) {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  std::size_t checksum_at = 0;
+  if (std::string e = check_checksum(text, &checksum_at); !e.empty()) return fail(e);
+  Values values;
+  if (std::string e = split_lines(text.substr(0, checksum_at), &values); !e.empty()) {
+    return fail(e);
   }
   if (values[kMagic] != std::to_string(kVersion)) {
     return fail("not a vmass state file of format version " + std::to_string(kVersion));
   }
-  auto get_text = [&](const char* key, std::string* out) {
-    const auto it = values.find(key);
-    if (it == values.end()) return fail(std::string("missing key ") + key);
-    *out = it->second;
-    return true;
-  };
-  auto get_double = [&](const std::string& key, double* out) {
-    std::string v;
-    if (!get_text(key.c_str(), &v)) return false;
-    const auto r = std::from_chars(v.data(), v.data() + v.size(), *out);
-    if (r.ec != std::errc() || r.ptr != v.data() + v.size()) {
-      // from_chars does not read "inf"/"nan" spellings of every libc; they are invalid here.
-      return fail(key + ": not a number: '" + v + "'");
-    }
-    return true;
-  };
-  auto get_long = [&](const std::string& key, long long* out) {
-    std::string v;
-    if (!get_text(key.c_str(), &v)) return false;
-    const auto r = std::from_chars(v.data(), v.data() + v.size(), *out);
-    if (r.ec != std::errc() || r.ptr != v.data() + v.size()) {
-      return fail(key + ": not an integer: '" + v + "'");
-    }
-    return true;
-  };
-
+  const ValueReader in{values};
   SavedState out;
-  PipelineSnapshot& s = out.snapshot;
-  std::string fingerprint, type;
-  long long n = 0;
-  if (!get_text("fingerprint", &fingerprint)) return false;
-  {
-    const auto r = std::from_chars(fingerprint.data(), fingerprint.data() + fingerprint.size(),
-                                   out.fingerprint, 16);
-    if (r.ec != std::errc()) return fail("fingerprint: not hexadecimal");
+  if (std::string e = read_header_fields(in, &out); !e.empty()) return fail(e);
+  for (const StateField& field : kStateFields) {
+    if (std::string e = read_table_field(in, field, &out.snapshot); !e.empty()) return fail(e);
   }
-  if (!get_long("saved_time_us", &n)) return false;
-  out.saved_time_us = n;
-  if (!get_text("type", &type)) return false;
-  if (type == "rls") {
-    s.type = RegressorType::kRls;
-  } else if (type == "bayes") {
-    s.type = RegressorType::kBayes;
-  } else {
-    return fail("type: expected rls or bayes, got '" + type + "'");
-  }
-  if (!get_long("has_prior", &n)) return false;
-  s.has_prior = n != 0;
-  if (!get_long("prior_reason", &n)) return false;
-  if (n < 0 || n > static_cast<long long>(StatusReason::kRestored)) {
-    return fail("prior_reason: out of range");
-  }
-  s.prior_reason = static_cast<StatusReason>(n);
-  if (!get_double("prior_mass_kg", &s.prior.mass_kg) ||
-      !get_double("prior_mass_std_kg", &s.prior.mass_std_kg) ||
-      !get_double("prior_mu_n", &s.prior.mu_n) ||
-      !get_double("prior_mu_std_n", &s.prior.mu_std_n)) {
-    return false;
-  }
-  if (!get_long("pairs_used", &n)) return false;
-  s.pairs_used = static_cast<long>(n);
-  if (!get_double("rls_theta_0", &s.rls_theta[0]) || !get_double("rls_theta_1", &s.rls_theta[1])) {
-    return false;
-  }
-  for (int i = 0; i < 4; ++i) {
-    if (!get_double("rls_covariance_" + std::to_string(i), &s.rls_covariance[i])) return false;
-  }
-  if (!get_double("nig_mean_0", &s.nig_mean[0]) || !get_double("nig_mean_1", &s.nig_mean[1])) {
-    return false;
-  }
-  for (int i = 0; i < 4; ++i) {
-    if (!get_double("nig_scaled_covariance_" + std::to_string(i), &s.nig_scaled_covariance[i])) {
-      return false;
+  out.snapshot.reference_grade_accel_mps2 = std::numeric_limits<double>::quiet_NaN();
+  const auto grade = values.find(kGradeKey);
+  if (grade != values.end() && grade->second != "nan" && grade->second != "-nan") {
+    if (std::string e = in.real(kGradeKey, &out.snapshot.reference_grade_accel_mps2); !e.empty()) {
+      return fail(e);
     }
-  }
-  if (!get_double("nig_shape", &s.nig_shape) || !get_double("nig_scale", &s.nig_scale)) {
-    return false;
-  }
-  if (!get_long("has_reference", &n)) return false;
-  s.has_reference = n != 0;
-  if (!get_double("reference_deflection_m", &s.reference_deflection_m) ||
-      !get_double("reference_deflection_std_m", &s.reference_deflection_std_m)) {
-    return false;
-  }
-  // Optional (files from before the grade check): NaN = unknown grade.
-  s.reference_grade_accel_mps2 = std::numeric_limits<double>::quiet_NaN();
-  if (values.count("reference_grade_accel_mps2") != 0) {
-    const std::string& v = values["reference_grade_accel_mps2"];
-    if (v != "nan" && v != "-nan" &&
-        !get_double("reference_grade_accel_mps2", &s.reference_grade_accel_mps2)) {
-      return false;
-    }
-  }
-  for (int b = 0; b < kBlockCount; ++b) {
-    const std::string prefix = std::string(block_name(static_cast<Block>(b))) + "_";
-    BlockCounters& c = s.blocks[static_cast<std::size_t>(b)];
-    long long ticks = 0, candidates = 0, accepted = 0, rejected = 0;
-    if (!get_long(prefix + "ticks", &ticks) || !get_long(prefix + "candidates", &candidates) ||
-        !get_long(prefix + "accepted", &accepted) ||
-        !get_long(prefix + "rejected_innovation", &rejected)) {
-      return false;
-    }
-    c.ticks = static_cast<long>(ticks);
-    c.candidates = static_cast<long>(candidates);
-    c.accepted = static_cast<long>(accepted);
-    c.rejected_innovation = static_cast<long>(rejected);
   }
   *state = out;
   return true;

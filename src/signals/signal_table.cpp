@@ -87,7 +87,7 @@ InputState SignalTable::input_state(Input input) const {
   s.value = slot.offset;
   s.timeout_us = INT64_MAX;
   for (int k = 0; k < slot.term_count; ++k) {
-    const Term& t = terms_[static_cast<std::size_t>(slot.first_term + k)];
+    const Term& t = terms_[static_cast<std::size_t>(slot.first_term) + static_cast<std::size_t>(k)];
     s.timeout_us = std::min(s.timeout_us, t.timeout_us);
     if (t.time_us < 0) {
       s.received = false;
@@ -119,7 +119,8 @@ Sample SignalTable::sample_at(TimeUs now_us) {
     bool good = true;
     double value = slot.offset;
     for (int k = 0; k < slot.term_count; ++k) {
-      const Term& t = terms_[static_cast<std::size_t>(slot.first_term + k)];
+      const Term& t =
+          terms_[static_cast<std::size_t>(slot.first_term) + static_cast<std::size_t>(k)];
       if (t.time_us < 0) {
         received = false;
         break;

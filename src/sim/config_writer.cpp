@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "text_file.hpp"
+#include "vmass/config/suspension_section.hpp"
 #include "vmass/sim/csv_writer.hpp"
 #include "vmass/sim/suspension.hpp"
 
@@ -72,15 +73,14 @@ void write_config_yaml(std::ostream& os, const ConfigValues& c,
   e << YAML::Key << "gravity_mps2" << YAML::Value << c.gravity_mps2;
   e << YAML::EndMap;
 
-  e << YAML::Key << "suspension" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "stiffness_n_per_m" << YAML::Value << c.stiffness_n_per_m
-    << YAML::Comment("calibrated; see header");
-  e << YAML::Key << "empty_deflection_m" << YAML::Value << c.empty_deflection_m;
-  e << YAML::Key << "progressive_knee_m" << YAML::Value << c.progressive_knee_m;
-  e << YAML::Key << "progressive_rate_n_per_m2" << YAML::Value << c.progressive_rate_n_per_m2;
-  e << YAML::Key << "linear_range_kg" << YAML::Value << c.linear_range_kg;
-  e << YAML::Key << "calibrated_range_kg" << YAML::Value << c.calibrated_range_kg;
-  e << YAML::EndMap;
+  vmass::SuspensionParams suspension;  // the estimator's (config) parameters
+  suspension.stiffness_n_per_m = c.stiffness_n_per_m;
+  suspension.empty_deflection_m = c.empty_deflection_m;
+  suspension.progressive_knee_m = c.progressive_knee_m;
+  suspension.progressive_rate_n_per_m2 = c.progressive_rate_n_per_m2;
+  suspension.linear_range_kg = c.linear_range_kg;
+  suspension.calibrated_range_kg = c.calibrated_range_kg;
+  emit_suspension_section(e, suspension, {"calibrated; see header"});
 
   e << YAML::Key << "estimator" << YAML::Value << YAML::BeginMap;
   e << YAML::Key << "type" << YAML::Value << "bayes";

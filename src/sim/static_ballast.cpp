@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "text_file.hpp"
+#include "vmass/config/suspension_section.hpp"
 
 namespace vmass::sim {
 namespace {
@@ -112,13 +113,14 @@ std::string write_ballast_files(const SimulationResult& result, const std::strin
   y += "# sensor's coordinates: what a perfect calibration finds (the sensor's zero offset is\n";
   y += "# part of empty_deflection_m and progressive_knee_m). Curve, as the config loader reads\n";
   y += "# it: F - F_empty = c (z - z0) + k2 max(0, z - z_knee)^2.\n";
-  y += "suspension:\n";
-  y += "  stiffness_n_per_m: " + num(t.stiffness_n_per_m) + "\n";
-  y += "  empty_deflection_m: " + num(t.empty_deflection_m) + "\n";
-  y += "  progressive_knee_m: " + num(t.progressive_knee_m) + "\n";
-  y += "  progressive_rate_n_per_m2: " + num(t.progressive_rate_n_per_m2) + "\n";
-  y += "  linear_range_kg: " + num(t.knee_added_mass_kg) + "  # ballast that reaches the knee\n";
-  y += "  calibrated_range_kg: " + num(schedule.added_mass_kg(schedule.steps)) + "\n";
+  vmass::SuspensionParams suspension;  // the estimator's (config) parameters
+  suspension.stiffness_n_per_m = t.stiffness_n_per_m;
+  suspension.empty_deflection_m = t.empty_deflection_m;
+  suspension.progressive_knee_m = t.progressive_knee_m;
+  suspension.progressive_rate_n_per_m2 = t.progressive_rate_n_per_m2;
+  suspension.linear_range_kg = t.knee_added_mass_kg;
+  suspension.calibrated_range_kg = schedule.added_mass_kg(schedule.steps);
+  y += suspension_section_yaml(suspension, {"", "", "", "", "ballast that reaches the knee", ""});
   y += "sensor:\n";
   y += "  zero_offset_m: " + num(t.sensor_offset_m) + "\n";
   y += "  noise_std_m: " + num(t.sensor_noise_std_m) + "\n";

@@ -132,6 +132,31 @@ TEST(BayesEstimator, PublishesOnlyWhenABatchCompletes) {
   EXPECT_NE(bayes.state().mass_kg, prior_state.mass_kg);
 }
 
+TEST(BayesEstimator, FlushTakesTheOpenBatchIntoThePosterior) {
+  // Given 25 pairs in batches of 10, when the estimator is flushed, then the 5 pairs of the
+  // open batch are in the posterior: exactly one conjugate update over all 25.
+  BayesParams params;
+  params.batch_size = 10;
+  BayesEstimator bayes(params);
+  bayes.reset(test_prior());
+  const NigPosterior prior = bayes.posterior();
+  const std::vector<RegressionPair> pairs = synthetic_pairs(25, 1800.0, 100.0, 100.0, 3);
+  BayesEstimator::Sufficient all;
+  for (const RegressionPair& pair : pairs) {
+    bayes.update(pair);
+    all.add(pair);
+  }
+  ASSERT_EQ(bayes.state().pairs_used, 20);
+  EXPECT_TRUE(bayes.flush());
+  EXPECT_EQ(bayes.pending_pairs(), 0);
+  EXPECT_EQ(bayes.state().pairs_used, 25);
+  expect_posterior_near(bayes.posterior(), BayesEstimator::conjugate_update(prior, all), 1e-9);
+  // Nothing left: a second flush changes nothing.
+  const NigPosterior flushed = bayes.posterior();
+  EXPECT_FALSE(bayes.flush());
+  EXPECT_EQ(bayes.posterior().mean, flushed.mean);
+}
+
 TEST(BayesEstimator, SequentialBatchesEqualOneConjugateUpdate) {
   BayesParams params;
   params.batch_size = 25;

@@ -55,11 +55,11 @@ TEST_P(PipelineTest, FollowsALoadStepAfterReinitialisation) {
   // The static init sees the true load through the deflection, with a calibration error of
   // +3 % on the added mass, so that the events have something to correct.
   auto deflection = [&](double m) {
-    return testing::deflection_for(v.empty_mass_kg + 1.03 * (m - v.empty_mass_kg), v,
-                                   p.suspension);
+    return testing::deflection_for(v.empty_mass_kg + 1.03 * (m - v.empty_mass_kg), v, p.suspension);
   };
   std::vector<Sample> drive = testing::standstill_samples(0.0, 5.0, deflection(first.mass_kg));
-  append(&drive, testing::longitudinal_samples(first, v, 5.0, 65.0, 10.0, deflection(first.mass_kg)));
+  append(&drive,
+         testing::longitudinal_samples(first, v, 5.0, 65.0, 10.0, deflection(first.mass_kg)));
   append(&drive, testing::standstill_samples(65.0, 72.0, deflection(second.mass_kg)));
   append(&drive,
          testing::longitudinal_samples(second, v, 72.0, 132.0, 10.0, deflection(second.mass_kg)));
@@ -172,6 +172,51 @@ TEST_P(PipelineTest, DrivingBeforeAnyStandstillStartsFromTheEmptyMass) {
   EXPECT_EQ(r.estimates[0].reason, StatusReason::kNoStaticPrior);
   EXPECT_DOUBLE_EQ(r.estimates[0].initial_mass_kg, p.vehicle.empty_mass_kg);
   EXPECT_NEAR(r.estimates.back().mass_kg, drive.mass_kg, 0.01 * drive.mass_kg);
+}
+
+TEST_P(PipelineTest, FlushPutsEveryAcceptedPairIntoTheEstimate) {
+  // Given a drive that ends with a Bayes batch open, when the pipeline is flushed, then the
+  // estimate uses every accepted pair (RLS: it already does; flush changes nothing).
+  const PipelineParams p = params(GetParam());
+  testing::LongitudinalDrive drive;
+  drive.force_noise_std_n = 30.0;
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  std::vector<Sample> samples = testing::standstill_samples(0.0, 5.0, z);
+  append(&samples, testing::longitudinal_samples(drive, p.vehicle, 5.0, 40.0, 10.0, z));
+  Pipeline pipeline(p);
+  const DriveRun r = run(pipeline, samples);
+  const Estimate before = r.estimates.back();
+  const long accepted = before.blocks[0].accepted + before.blocks[1].accepted;
+  ASSERT_GT(accepted, 0);
+  const bool changed = pipeline.flush();
+  const Estimate& after = pipeline.estimate();
+  EXPECT_EQ(after.pairs_used, accepted);
+  EXPECT_EQ(after.time_us, before.time_us);
+  if (GetParam() == RegressorType::kRls) {
+    EXPECT_FALSE(changed);
+    EXPECT_EQ(after.mass_kg, before.mass_kg);
+  } else {
+    ASSERT_NE(accepted % p.estimator.bayes.batch_size, 0) << "the drive must end mid-batch";
+    EXPECT_TRUE(changed);
+    EXPECT_LT(before.pairs_used, accepted);
+  }
+  EXPECT_FALSE(pipeline.flush());
+}
+
+TEST_P(PipelineTest, TheEstimateSaysWhereItsPriorCameFrom) {
+  const PipelineParams p = params(GetParam());
+  testing::LongitudinalDrive drive;
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  std::vector<Sample> samples = testing::standstill_samples(0.0, 5.0, z);
+  append(&samples, testing::longitudinal_samples(drive, p.vehicle, 5.0, 10.0, 10.0, z));
+  Pipeline standing(p);
+  const DriveRun a = run(standing, samples);
+  EXPECT_EQ(a.estimates.front().prior_reason, StatusReason::kWaitingForStandstill);
+  EXPECT_EQ(a.estimates.back().prior_reason, StatusReason::kStaticInitialised);
+  Pipeline rolling(p);
+  const DriveRun b =
+      run(rolling, testing::longitudinal_samples(drive, p.vehicle, 0.0, 10.0, 10.0, z));
+  EXPECT_EQ(b.estimates.back().prior_reason, StatusReason::kNoStaticPrior);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothRegressors, PipelineTest,

@@ -36,8 +36,8 @@ TEST(Supervisor, RejectsOutliersOnceGatingStarts) {
   bool changed = false;
   for (int i = 0; i < 200; ++i) {
     const double da = accel(rng);
-    const PairEvent ev = sup.offer(Block::kLongitudinal, pair_of(da, 1650.0 * da + noise(rng)),
-                                   rls, &changed);
+    const PairEvent ev =
+        sup.offer(Block::kLongitudinal, pair_of(da, 1650.0 * da + noise(rng)), rls, &changed);
     EXPECT_EQ(ev.verdict, PairVerdict::kAccepted) << i;  // honest pairs pass
   }
   const double before = rls.state().mass_kg;

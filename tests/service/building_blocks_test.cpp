@@ -9,8 +9,8 @@
 
 #include "test_drive.hpp"
 #include "vmass/config/config.hpp"
-#include "vmass/service/input_source.hpp"
-#include "vmass/service/seqlock.hpp"
+#include "vmass/runtime/input_source.hpp"
+#include "vmass/runtime/seqlock.hpp"
 #include "vmass/service/service_config.hpp"
 #include "vmass/service/spsc_queue.hpp"
 #include "vmass/service/tick_stats.hpp"
@@ -18,6 +18,10 @@
 
 namespace vmass::service {
 namespace {
+
+using runtime::InputTimeouts;
+using runtime::InputValues;
+using runtime::SeqLock;
 
 TEST(LogHistogram, BinsCoverEveryValueOnceAndInOrder) {
   // bin_upper(bin_of(v)) >= v, and the previous bin ends below v: bins tile the line.

@@ -19,11 +19,21 @@
 
 #include "test_drive.hpp"
 #include "vmass/can/dbc.hpp"
-#include "vmass/service/can_input_source.hpp"
+#include "vmass/runtime/can_input_source.hpp"
+#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/socketcan_frame_source.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
 namespace vmass::service {
 namespace {
+
+using runtime::CandumpFrameSource;
+using runtime::CanInputSource;
+using runtime::InputRecord;
+using runtime::InputSource;
+using runtime::SocketCanFrameSource;
+using runtime::SourceCounters;
+using runtime::SourceState;
 
 namespace fs = std::filesystem;
 const std::string kDbc = std::string(VMASS_SOURCE_DIR) + "/tests/data/dbc/toyota_prius_2010_pt.dbc";

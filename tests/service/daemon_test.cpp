@@ -23,9 +23,10 @@
 #include "test_drive.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
-#include "vmass/replay/estimate_csv.hpp"
-#include "vmass/replay/samples_csv.hpp"
-#include "vmass/replay/tick_resampler.hpp"
+#include "vmass/csv/estimate_csv.hpp"
+#include "vmass/csv/samples_csv.hpp"
+#include "vmass/runtime/recording.hpp"
+#include "vmass/runtime/tick_driver.hpp"
 #include "vmass/service/state_store.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/signals/signal_table.hpp"
@@ -173,8 +174,9 @@ void expect_bit_identical(const LoggedRun& daemon, const std::vector<Estimate>& 
 }
 
 // `vmassd --samples CSV --speed max` ticks in log time and must give exactly what offline replay
-// gives: checked bit for bit against the replay loop (TickResampler + Pipeline, as vmass-replay
-// runs it) and, row for row, against the vmass-replay binary's CSV.
+// gives: checked bit for bit against the offline loop (runtime::TickDriver + Pipeline, as
+// vmass-replay runs it: what the daemon's threads, rings and LCM must not change) and, row for
+// row, against the vmass-replay binary's CSV.
 TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
   for (const std::string type : {"bayes", "rls"}) {
     SCOPED_TRACE(type);
@@ -191,18 +193,18 @@ TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
     ConfigLoad c = load_config(config);
     ASSERT_TRUE(c.ok()) << c.error;
     const PipelineParams& params = c.config->pipeline;
+    const double rate_hz = params.estimator.differencing.tick_rate_hz;
     Pipeline pipeline(params);
-    TickResampler ticks(params.estimator.differencing.tick_rate_hz,
-                        5.0 / params.estimator.differencing.tick_rate_hz);
     std::vector<Estimate> offline;
-    SamplesCsvReader reader(csv_);
-    ASSERT_TRUE(reader.error().empty()) << reader.error();
-    while (auto s = reader.next()) {
-      ticks.push(*s, [&](const Sample& tick) {
-        pipeline.step(tick);
-        offline.push_back(pipeline.estimate());
-      });
-    }
+    std::string error;
+    auto source =
+        runtime::SamplesCsvSource::open(csv_, runtime::default_samples_timeout_s(rate_hz), &error);
+    ASSERT_TRUE(source) << error;
+    runtime::UnpacedClock clock;
+    runtime::TickDriver(*source, rate_hz).run(clock, [&](std::int64_t, TimeUs t) {
+      pipeline.step(source->sample_at(t));
+      offline.push_back(pipeline.estimate());
+    });
     ASSERT_GT(offline.back().pairs_used, 50);
     expect_bit_identical(daemon, offline);
     // The final status closes the run (state stopping) and counts every row.
@@ -391,13 +393,22 @@ TEST_F(DaemonTest, SigkillMidDriveThenRestartResumesFromSavedState) {
 
   // Without the saved state the same drive starts from nothing.
   const std::string fresh = path("fresh.lcm");
+  const std::string fresh_state = path("fresh.state");
   ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
-                " --speed max --no-restore --lcm-url 'file://" + fresh + "?mode=w' 2> /dev/null"),
+                " --speed max --no-restore --lcm-url 'file://" + fresh + "?mode=w' --state-file " +
+                fresh_state + " 2> /dev/null"),
             0);
   const LoggedRun fresh_run = read_lcm_log(fresh);
   ASSERT_FALSE(fresh_run.estimates.empty());
   EXPECT_EQ(fresh_run.estimates.front().pairs_used, 0);
   EXPECT_FALSE(fresh_run.estimates.front().mass_known);
+  // The final save flushed the open Bayes batch: every accepted pair is in the saved belief.
+  const service::StateLoad final_state =
+      service::load_state_file(fresh_state, service::state_fingerprint(c.config->pipeline));
+  ASSERT_EQ(final_state.status, service::StateLoadStatus::kLoaded) << final_state.error;
+  const vmass::mass_estimate_t& last = fresh_run.estimates.back();
+  EXPECT_EQ(final_state.state.snapshot.pairs_used,
+            last.longitudinal_accepted + last.lateral_accepted);
 }
 
 // A bad config is refused with file:line:key and exit code 2; an unknown CLI combination too.

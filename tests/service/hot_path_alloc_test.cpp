@@ -1,6 +1,6 @@
 // The estimator thread's hot path allocates nothing after start-up: given the simulated drive's
 // CAN frames already read (the receive thread's side), when the estimator side folds them into
-// the SignalTable (InputSource::apply) and ticks the pipeline (EstimatorLoop::tick) for the whole
+// the SignalTable (InputSource::apply) and ticks the pipeline (TickStep::tick) for the whole
 // drive, then operator new is not called once after the first second.
 //
 // Counted with a replaced global operator new; AddressSanitizer and ThreadSanitizer bring their
@@ -18,8 +18,9 @@
 #include <gtest/gtest.h>
 
 #include "vmass/config/config.hpp"
-#include "vmass/service/can_input_source.hpp"
-#include "vmass/service/estimator_loop.hpp"
+#include "vmass/runtime/can_input_source.hpp"
+#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/tick_step.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
 static std::atomic<long> g_allocations{0};
@@ -39,6 +40,12 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 #ifdef VMASS_SIM_BIN
 namespace vmass::service {
 namespace {
+
+using runtime::CandumpFrameSource;
+using runtime::CanInputSource;
+using runtime::InputRecord;
+using runtime::InputSource;
+using runtime::TickStep;
 
 namespace fs = std::filesystem;
 
@@ -67,7 +74,7 @@ TEST(HotPath, EstimatorSideOfTheCanInputAllocatesNothing) {
   ASSERT_GT(records.size(), 100'000u);
 
   // The estimator thread's side: apply the records stamped <= T_k, then tick k.
-  EstimatorLoop loop(config.config->pipeline);
+  TickStep loop(config.config->pipeline);
   const TimeUs t0 = records.front().time_us;
   std::size_t next = 0;
   long after_first_second = -1;

@@ -19,6 +19,8 @@
 namespace vmass::service {
 namespace {
 
+using runtime::TickRecord;
+
 TickRecord make_record(std::int64_t tick) {
   TickRecord r;
   r.tick = tick;

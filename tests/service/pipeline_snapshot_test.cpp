@@ -56,9 +56,9 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.has_reference, b.has_reference);
   EXPECT_EQ(a.reference_deflection_m, b.reference_deflection_m);
   EXPECT_EQ(a.reference_deflection_std_m, b.reference_deflection_std_m);
-  EXPECT_TRUE(a.reference_grade_accel_mps2 == b.reference_grade_accel_mps2 ||
-              (std::isnan(a.reference_grade_accel_mps2) &&
-               std::isnan(b.reference_grade_accel_mps2)));
+  EXPECT_TRUE(
+      a.reference_grade_accel_mps2 == b.reference_grade_accel_mps2 ||
+      (std::isnan(a.reference_grade_accel_mps2) && std::isnan(b.reference_grade_accel_mps2)));
   for (int b_ = 0; b_ < kBlockCount; ++b_) {
     EXPECT_EQ(a.blocks[b_].ticks, b.blocks[b_].ticks);
     EXPECT_EQ(a.blocks[b_].accepted, b.blocks[b_].accepted);

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "vmass/core/sample.hpp"
-#include "vmass/replay/samples_csv.hpp"
+#include "vmass/csv/samples_csv.hpp"
 
 namespace vmass::test {
 

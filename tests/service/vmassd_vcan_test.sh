@@ -264,10 +264,14 @@ for k, row in enumerate(aligned):
     e = by_tick.get(k)
     if e is None or not e.mass_known: continue
     compared += 1
-    near = [float(aligned[j]["mass_kg"]) for j in (k - 1, k, k + 1) if 0 <= j < len(aligned)]
+    # An empty mass cell: vmass-replay had no estimate yet at that tick.
+    near = [float(aligned[j]["mass_kg"]) for j in (k - 1, k, k + 1)
+            if 0 <= j < len(aligned) and aligned[j]["mass_kg"]]
+    if not near: near = [float("inf")]
     dm = min(abs(e.mass_kg - m) for m in near)
     std = max(e.mass_std_kg, 1e-9)
-    worst_same = max(worst_same, abs(e.mass_kg - float(row["mass_kg"])) / std)
+    same = float(row["mass_kg"]) if row["mass_kg"] else float("inf")
+    worst_same = max(worst_same, abs(e.mass_kg - same) / std)
     ratios.append(dm / std)
     if dm / std > worst[0]: worst = (dm / std, dm, k)
 ratios.sort()

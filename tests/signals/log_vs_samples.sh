@@ -20,9 +20,9 @@ grep -q '^can:' "$out/d/config.yaml" || fail "config.yaml has no can: section"
 
 for est in bayes rls; do
   "$replay" --config "$out/d/config.yaml" --samples "$out/d/samples.csv" --estimator $est \
-    --json >"$out/samples_$est.json" || fail "--samples $est"
+    --truth "$out/d/truth.csv" --json >"$out/samples_$est.json" || fail "--samples $est"
   "$replay" --config "$out/d/config.yaml" --log "$out/d/drive.log" --estimator $est \
-    --json >"$out/log_$est.json" 2>"$out/log_$est.err" || fail "--log $est"
+    --truth "$out/d/truth.csv" --json >"$out/log_$est.json" 2>"$out/log_$est.err" || fail "--log $est"
   a=$(field error_percent <"$out/samples_$est.json")
   b=$(field error_percent <"$out/log_$est.json")
   da=$(field duration_s <"$out/samples_$est.json")

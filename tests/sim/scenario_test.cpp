@@ -16,9 +16,8 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 TEST(SimScenarios, RegistryHasTheFourScenarios) {
   const std::vector<std::string> names = scenario_names();
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"paper_exp1", "paper_exp2", "load_step", "steady_turn",
-                                      "static_ballast"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"paper_exp1", "paper_exp2", "load_step", "steady_turn",
+                                             "static_ballast"}));
   for (const std::string& n : names) {
     const auto s = find_scenario(n);
     ASSERT_TRUE(s.has_value()) << n;

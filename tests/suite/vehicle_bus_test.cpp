@@ -1,6 +1,6 @@
 // A population vehicle's bus round trip through the product's path: its own DBC and the
-// engineer's mapping, loaded by the real loaders, decoded by CandumpReader + replay_candump,
-// give back the ECU signals within each signal's quantisation, whatever the vehicle's byte
+// engineer's mapping, loaded by the real loaders, decoded by CandumpReader + the runtime's tick
+// driver, give back the ECU signals within each signal's quantisation, whatever the vehicle's byte
 // order, units and sign conventions.
 #include <gtest/gtest.h>
 
@@ -11,7 +11,9 @@
 
 #include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
-#include "vmass/signals/log_replay.hpp"
+#include "vmass/runtime/can_input_source.hpp"
+#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/signals/signal_table.hpp"
 #include "vmass/sim/datasheet_config.hpp"
@@ -69,11 +71,15 @@ TEST(VehicleBus, RoundTripThroughTheProductsLoadersGivesTheEcuSignals) {
     ASSERT_TRUE(config.ok()) << d.id << ": " << config.error;
     const signals::CanInputsLoad can = signals::load_can_inputs(*config.config);
     ASSERT_TRUE(can.ok()) << d.id << ": " << can.error;
-    signals::SignalTable table(can.inputs->decoder, can.inputs->mapping);
-    std::ifstream log(dir / "drive.log");
-    can::CandumpReader reader(log, "drive.log");
+    std::string error;
+    auto log = runtime::CandumpFrameSource::open((dir / "drive.log").string(), &error);
+    ASSERT_TRUE(log) << error;
+    runtime::CanInputSource source(std::move(log), can.inputs->decoder, can.inputs->mapping);
     std::vector<Sample> samples;
-    signals::replay_candump(reader, table, 100.0, [&](const Sample& s) { samples.push_back(s); });
+    runtime::UnpacedClock clock;
+    runtime::TickDriver(source, 100.0).run(clock, [&](std::int64_t, TimeUs t) {
+      samples.push_back(source.sample_at(t));
+    });
     ASSERT_GT(samples.size(), 10000u) << d.id;
     // Tick k sees the samples the ECUs took at k - 1 (or k): compare with the closer one.
     auto trace_at_tick = [&](std::size_t k) { return result.ecu_trace[k * 10]; };

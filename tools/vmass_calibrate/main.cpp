@@ -8,8 +8,9 @@
 // --ballast takes a steps CSV (added_mass_<unit>, rear_right_deflection_<unit>; one row per
 // sample or step), a time series (time_s, rear_right_deflection_<unit>[, speed_mps], e.g. a
 // vmass samples.csv), or a candump -l log of the test (recognised by its first line), decoded
-// with the --config file's `can:` section: the SignalTable is ticked at 100 Hz in log time
-// (vmass/signals/log_replay.hpp) and every tick with a new, valid rear_right_deflection frame
+// with the --config file's `can:` section and ticked at 100 Hz in log time by the runtime's tick
+// driver (vmass/runtime/tick_driver.hpp, as in vmass-replay); every tick with a new, valid
+// rear_right_deflection frame
 // gives one point (time of that frame, deflection, speed when valid); held values are not
 // repeated, so the plateau detector's noise estimate sees the sensor's own sample rate. The
 // series' standstill plateaus are found and paired with --masses. Exit codes: 0 ok, 1 fit not
@@ -28,20 +29,22 @@
 
 #include <CLI/CLI.hpp>
 
+#include "exit_code.hpp"
 #include "vmass/calibrate/ballast_csv.hpp"
 #include "vmass/calibrate/calibration_report.hpp"
 #include "vmass/calibrate/plateau_detector.hpp"
 #include "vmass/calibrate/suspension_fit.hpp"
 #include "vmass/config/config.hpp"
-#include "vmass/signals/log_replay.hpp"
+#include "vmass/runtime/recording.hpp"
+#include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_table.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kExitFit = 1;
-constexpr int kExitUsage = 2;
+using vmass::tools::kExitFailure;
+using vmass::tools::kExitUsage;
 
 int fail(const std::string& message, int code = kExitUsage) {
   std::cerr << "vmass-calibrate: error: " << message << "\n";
@@ -81,49 +84,47 @@ bool looks_like_candump(const std::string& path) {
 std::string read_log_series(const std::string& path, const vmass::Config& config,
                             std::vector<vmass::calibrate::DeflectionPoint>* series,
                             std::string* note) {
-  vmass::signals::CanInputsLoad can = vmass::signals::load_can_inputs(config);
-  if (!can.ok()) return can.error;
-  if (!can.inputs->mapping.find(vmass::Input::kRearRightDeflection)) {
+  namespace rt = vmass::runtime;
+  rt::CandumpRecording recording = rt::open_candump_recording(path, config);
+  if (!recording.source) return recording.error;
+  const rt::CanInputSource& source = *recording.source;
+  if (!source.table().input_state(vmass::Input::kRearRightDeflection).mapped) {
     return config.file + ": can.inputs.rear_right_deflection: required to calibrate from a log";
   }
-  for (const std::string& w : can.inputs->warnings) std::cerr << "vmass-calibrate: " << w << "\n";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return path + ": cannot open the log";
-  vmass::signals::SignalTable table(can.inputs->decoder, can.inputs->mapping);
-  vmass::can::CandumpReader reader(in, path);
-  reader.on_error([&](const vmass::can::CandumpError& e) {
-    if (reader.stats().corrupt <= 10) std::cerr << "vmass-calibrate: " << e.message << "\n";
+  for (const std::string& w : recording.warnings) std::cerr << "vmass-calibrate: " << w << "\n";
+  rt::CandumpFrameSource& log = *recording.log;
+  log.on_error([&log](const vmass::can::CandumpError& e) {
+    if (log.stats().corrupt <= 10) std::cerr << "vmass-calibrate: " << e.message << "\n";
   });
   constexpr double kTickRateHz = 100.0;
   vmass::TimeUs last_update_us = -1;
-  vmass::TimeUs t0_us = 0;
-  bool have_t0 = false;
-  const auto replayed =
-      vmass::signals::replay_candump(reader, table, kTickRateHz, [&](const vmass::Sample& s) {
-        if (!have_t0) {
-          have_t0 = true;
-          t0_us = s.time_us;
-        }
-        if (!s.has(vmass::Input::kRearRightDeflection)) return;
-        const vmass::TimeUs t_us = table.input_state(vmass::Input::kRearRightDeflection).time_us;
-        if (t_us == last_update_us) return;  // held, not a new measurement
-        last_update_us = t_us;
-        vmass::calibrate::DeflectionPoint p;
-        p.time_s = static_cast<double>(t_us - t0_us) * 1e-6;
-        p.deflection_m = s.rear_right_deflection_m;
-        if (s.has(vmass::Input::kSpeed)) p.speed_mps = s.speed_mps;
-        series->push_back(p);
-      });
-  const auto& c = table.counters();
+  vmass::TimeUs t0_us = 0;  // T_0, the first frame's time
+  rt::UnpacedClock clock;
+  rt::TickDriver driver(*recording.source, kTickRateHz);
+  const rt::TickRun run = driver.run(clock, [&](std::int64_t k, vmass::TimeUs t) {
+    if (k == 0) t0_us = t;
+    const vmass::Sample s = recording.source->sample_at(t);
+    if (!s.has(vmass::Input::kRearRightDeflection)) return;
+    const vmass::TimeUs t_us =
+        source.table().input_state(vmass::Input::kRearRightDeflection).time_us;
+    if (t_us == last_update_us) return;  // held, not a new measurement
+    last_update_us = t_us;
+    vmass::calibrate::DeflectionPoint p;
+    p.time_s = static_cast<double>(t_us - t0_us) * 1e-6;
+    p.deflection_m = s.rear_right_deflection_m;
+    if (s.has(vmass::Input::kSpeed)) p.speed_mps = s.speed_mps;
+    series->push_back(p);
+  });
+  const auto& c = source.table().counters();
   char buf[200];
   std::snprintf(buf, sizeof buf,
                 "log: %llu frames (%llu corrupt lines, %llu unknown id, %llu too short), %lld "
                 "ticks, %zu deflection points",
-                static_cast<unsigned long long>(reader.stats().frames),
-                static_cast<unsigned long long>(reader.stats().corrupt),
+                static_cast<unsigned long long>(log.stats().frames),
+                static_cast<unsigned long long>(log.stats().corrupt),
                 static_cast<unsigned long long>(c.unknown_id),
-                static_cast<unsigned long long>(c.malformed),
-                static_cast<long long>(replayed.ticks), series->size());
+                static_cast<unsigned long long>(c.malformed), static_cast<long long>(run.ticks),
+                series->size());
   *note = buf;
   if (series->empty()) {
     return path + ": no valid rear_right_deflection in the log (" + std::string(buf) + ")";
@@ -140,6 +141,7 @@ bool write_file(const std::string& path, const std::string& text) {
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 int main(int argc, char** argv) {
   CLI::App app{
       "vmass-calibrate: rear suspension stiffness from static ballast steps (paper eq. 1-3)"};
@@ -174,14 +176,7 @@ int main(int argc, char** argv) {
   app.add_option("--settle-s", plateau.settle_s, "plateaus: settling time always dropped");
   app.add_option("--min-plateau-s", plateau.min_plateau_s, "plateaus: shortest plateau kept");
   app.add_option("--min-step-mm", min_step_mm, "plateaus: closer levels are the same load");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitUsage;
-  }
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   plateau.min_step_m = min_step_mm * 1e-3;
 
   // ---- Vehicle geometry (and empty mass) from the config and the flags.
@@ -269,7 +264,7 @@ int main(int argc, char** argv) {
   // ---- Fit.
   const vmass::calibrate::SuspensionFitResult result =
       vmass::calibrate::fit_suspension(steps, geometry, fit);
-  if (!result.ok()) return fail(result.error, kExitFit);
+  if (!result.ok()) return fail(result.error, kExitFailure);
   const vmass::calibrate::SuspensionCalibration& cal = *result.calibration;
   const std::vector<vmass::calibrate::MassCheckRow> rows =
       have_empty_mass ? vmass::calibrate::mass_check(cal, vehicle)
@@ -307,7 +302,7 @@ int main(int argc, char** argv) {
         shell_quote("vmass-calibrate: " + fs::path(ballast_path).filename().string());
     const int rc = std::system(command.c_str());
     fs::remove(json_path);
-    if (rc != 0) return fail("plotting failed (" + command + ")", kExitFit);
+    if (rc != 0) return fail("plotting failed (" + command + ")", kExitFailure);
     if (!json) std::cout << "plot               " << plot_path << "\n";
   }
   return 0;

@@ -5,8 +5,9 @@
 //   vmass-can dump   --can IFACE [--count N] [--idle-timeout S] [--dbc FILE]
 //                                                     print frames from SocketCAN as candump -l
 //
-// Exit status: 0 on success, 1 on errors (invalid DBC, unreadable input, SocketCAN failure),
-// 2 for dump when fewer than --count frames arrived before the idle timeout.
+// Exit codes (tools/common/exit_code.hpp): 0 ok; 1 failure (SocketCAN cannot be opened, dump
+// got fewer than --count frames before the idle timeout); 2 usage or input error (a DBC with
+// errors, or with deviations under --strict; a log that cannot be opened).
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "exit_code.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
@@ -128,19 +130,20 @@ int run_check(const std::string& dbc, bool strict) {
   std::printf("%s: %zu messages, %zu signals, %d warning(s), %d error(s)%s\n", dbc.c_str(),
               db.messages.size(), signal_count, r.warning_count(), r.error_count(),
               strict ? " (strict)" : "");
-  return r.ok() && compiles ? 0 : 1;
+  return r.ok() && compiles ? vmass::tools::kExitOk : vmass::tools::kExitUsage;
 }
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
   auto decoder = load_decoder(dbc, strict, json);
-  if (!decoder) return 1;
+  if (!decoder) return vmass::tools::kExitUsage;
   std::ifstream file;
   std::istream* in = &std::cin;
   if (!log.empty() && log != "-") {
     file.open(log);
     if (!file) {
       std::cerr << log << ": cannot open\n";
-      return 1;
+      return vmass::tools::kExitUsage;
     }
     in = &file;
   }
@@ -266,7 +269,7 @@ int run_dump(const std::string& iface, long count, double idle_timeout_s, const 
             << " error), " << s.dropped << " dropped, " << s.interface_down << " interface down, "
             << s.interface_gone << " interface gone, " << s.reopens << " re-opened, "
             << s.no_kernel_timestamp << " without kernel timestamp\n";
-  return count > 0 && got < count ? 2 : 0;
+  return count > 0 && got < count ? vmass::tools::kExitFailure : vmass::tools::kExitOk;
 }
 
 }  // namespace
@@ -296,7 +299,7 @@ int main(int argc, char** argv) {
   dump->add_option("--idle-timeout", idle_timeout_s, "stop after this long without frames, s");
   dump->add_option("--dbc", dbc, "receive only this DBC's ids");
 
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   if (check->parsed()) return run_check(dbc, strict);
   if (decode->parsed()) return run_decode(dbc, log, json, strict);
   return run_dump(iface, count, idle_timeout_s, dbc);

@@ -29,6 +29,7 @@
 #include <vmass/mass_estimate_t.hpp>
 #include <vmass/status_t.hpp>
 
+#include "exit_code.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/service/service_config.hpp"
 
@@ -185,6 +186,7 @@ class Monitor {
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
 int main(int argc, char** argv) {
   CLI::App app{"vmass-monitor: live view of vmassd's LCM output in a terminal"};
   std::string config_path, url, estimate_channel, status_channel;
@@ -209,7 +211,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   once_opt->excludes(count_opt)->excludes(rates_opt);
   count_opt->excludes(rates_opt);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
 
   vmass::service::LcmSettings lcm_settings;
   if (!config_path.empty()) {

@@ -11,7 +11,9 @@
 #include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/core/pipeline.hpp"
-#include "vmass/signals/log_replay.hpp"
+#include "vmass/runtime/can_input_source.hpp"
+#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/signals/signal_table.hpp"
 #include "vmass/sim/population.hpp"
@@ -116,13 +118,13 @@ Decoded decode(const sim::DrawnVehicle& vehicle, const sim::PopulationRun& run,
     out.error = can.error;
     return out;
   }
-  signals::SignalTable table(can.inputs->decoder, can.inputs->mapping);
-  std::istringstream log(sim::candump_text(frames));
-  can::CandumpReader reader(log, "drive.log");
+  runtime::CanInputSource source(
+      runtime::CandumpFrameSource::from_text(sim::candump_text(frames), "drive.log"),
+      can.inputs->decoder, can.inputs->mapping);
   out.samples.reserve(result.truth.size() + 16);
-  signals::replay_candump(reader, table,
-                          loaded.config->pipeline.estimator.differencing.tick_rate_hz,
-                          [&](const Sample& s) { out.samples.push_back(s); });
+  runtime::UnpacedClock clock;
+  runtime::TickDriver(source, loaded.config->pipeline.estimator.differencing.tick_rate_hz)
+      .run(clock, [&](std::int64_t, TimeUs t) { out.samples.push_back(source.sample_at(t)); });
   out.config = std::move(loaded.config);
   return out;
 }

@@ -4,8 +4,8 @@
 //
 // The path is the product's: the vehicle's DBC and the config its engineer writes go to a
 // work directory and are loaded with the real loaders (load_config, load_can_inputs); the bus
-// is turned into candump text and read back by CandumpReader and replay_candump, exactly as
-// `vmass-replay --log` does; the Pipeline steps on those samples. A config the loader refuses
+// is turned into candump text and read back by CandumpReader and the runtime's tick driver, exactly
+// as `vmass-replay --log` does; the Pipeline steps on those samples. A config the loader refuses
 // (an input or section the estimator does not support yet) makes the run "unsupported" for
 // vmass with the loader's message; the baselines are scored only where the config loads (they
 // read the same decoded samples).

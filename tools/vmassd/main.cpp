@@ -1,4 +1,5 @@
-// vmassd: the real-time vehicle mass estimation daemon (see daemon.hpp for its threads).
+// vmassd: the real-time vehicle mass estimation daemon. Only the command line is here: the
+// daemon is vmass::service::run_daemon (vmass/service/daemon.hpp: its threads and how it ticks).
 //
 //   vmassd --config FILE [--can IFACE | --replay LOG [--speed X|max] | --samples CSV
 //          [--speed X|max]] [--lcm-url URL] [--state-file PATH] [--no-restore]
@@ -6,16 +7,18 @@
 // Publishes vmass.mass_estimate_t on VMASS_ESTIMATE, vmass.status_t on VMASS_STATUS (and
 // vmass.pair_t on VMASS_PAIRS when lcm.publish_pairs). Runs under systemd as Type=notify
 // (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
-// (--replay, --samples) stops the daemon at its end.
+// (--replay, --samples) stops the daemon at its end. Exit codes (tools/common/exit_code.hpp):
+// 0 orderly stop, 1 start-up failure (input or LCM cannot be opened), 2 usage or config error.
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include "daemon.hpp"
+#include "exit_code.hpp"
+#include "vmass/service/daemon.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"vmassd: live vehicle mass estimation from CAN data, published on LCM"};
-  vmassd::Options o;
+  vmass::service::DaemonOptions o;
   app.add_option("--config", o.config_path, "vmass YAML config")->required();
   auto* can = app.add_option("--can", o.can_interface,
                              "SocketCAN interface (default: daemon.can_interface, can0)");
@@ -31,10 +34,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-restore", o.no_restore, "do not restore the saved state at start");
   can->excludes(replay)->excludes(samples);
   replay->excludes(samples);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
 
   // Diagnostics go to stderr (the journal under systemd); stdout stays free.
   spdlog::set_default_logger(spdlog::stderr_color_mt("vmassd"));
   spdlog::set_pattern("vmassd %^%l%$: %v");
-  return vmassd::run(o);
+  return vmass::service::run_daemon(o);
 }

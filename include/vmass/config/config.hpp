@@ -19,9 +19,9 @@ struct Config {
   std::string file;       ///< path it was read from ("<string>" for in-memory text)
   std::string directory;  ///< for paths relative to the config file
   PipelineParams pipeline;
-  YAML::Node can;         ///< raw `can:` section (may be null)
-  YAML::Node lcm;         ///< raw `lcm:` section (may be null)
-  YAML::Node daemon;      ///< raw `daemon:` section (may be null)
+  YAML::Node can;     ///< raw `can:` section (may be null)
+  YAML::Node lcm;     ///< raw `lcm:` section (may be null)
+  YAML::Node daemon;  ///< raw `daemon:` section (may be null)
 
   /// A path from the config, resolved against the config file's directory.
   std::string resolve_path(const std::string& path) const;

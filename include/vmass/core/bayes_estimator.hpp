@@ -37,8 +37,9 @@
 // normal with that variance has the same central credible_level interval as the predictive t.
 //
 // Pairs are collected into batches of batch_size (paper: 100 in simulation, 200 on the car);
-// the published state changes only when a batch completes. predict() uses the current posterior
-// (the pairs of the open batch not yet included).
+// the published state changes only when a batch completes, or when flush() closes the open
+// batch early (end of a log, daemon shutdown; conjugacy makes a short batch exact too). predict()
+// uses the current posterior (the pairs of the open batch not yet included).
 //
 // Bad data never produces NaN: update() ignores (returns false, changes nothing) a pair with a
 // non-finite field or weight <= 0; a batch whose posterior would not be finite is dropped.
@@ -82,6 +83,8 @@ class BayesEstimator final : public MassRegressor {
   void reset(const MassPrior& prior) override;
   PairPrediction predict(const RegressionPair& pair) const override;
   bool update(const RegressionPair& pair) override;
+  /// Closes the open batch (if any pair is in it) into the posterior.
+  bool flush() override;
   RegressorState state() const override;
   std::string_view name() const override { return "bayes"; }
 
@@ -115,6 +118,8 @@ class BayesEstimator final : public MassRegressor {
   /// Recompute the quantities cached per posterior (t quantile, predictive inflation).
   void refresh();
   void clear_pending();
+  /// The open batch into the posterior (dropped if the result would not be finite).
+  bool absorb_pending();
 
   BayesParams params_;
   NigPosterior posterior_;

@@ -51,6 +51,10 @@ struct Estimate {
   double ci_low_kg = 0.0;
   double ci_high_kg = 0.0;
   double initial_mass_kg = 0.0;  ///< the static (or empty-mass) prior of the current load
+  /// Where initial_mass_kg came from: static_initialised or load_changed (eq. 3 at a
+  /// standstill), no_static_prior (the empty mass: driving began before any standstill),
+  /// restored (a saved state); waiting_for_standstill while there is none.
+  StatusReason prior_reason = StatusReason::kWaitingForStandstill;
   long pairs_used = 0;
   EstimateStatus status = EstimateStatus::kInitialising;
   StatusReason reason = StatusReason::kWaitingForStandstill;

@@ -47,6 +47,12 @@ class MassRegressor {
   /// when a batch completed).
   virtual bool update(const RegressionPair& pair) = 0;
 
+  /// Take every accepted pair that is not in the published state yet into it (Bayes: the open
+  /// batch, however short; RLS: nothing is ever pending). Called at the end of a log and before
+  /// the daemon saves its final state, so that no accepted pair is lost. Returns true when the
+  /// published state changed.
+  virtual bool flush() = 0;
+
   virtual RegressorState state() const = 0;
 
   /// "rls" or "bayes".

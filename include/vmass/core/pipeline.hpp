@@ -14,7 +14,8 @@
 // reference standstill deflection and the block counters. After restore() the first completed
 // standstill window is compared with the restored reference deflection exactly like any later
 // window: when the load changed meanwhile, the static initialisation restarts the regressor.
-// The open Bayes batch and the extractors' short histories are not carried over.
+// The open Bayes batch and the extractors' short histories are not carried over (flush() first
+// to keep the batch).
 //
 // Pure: no threads, clocks, files or logging. Not thread-safe. Allocates only in the
 // constructor.
@@ -81,7 +82,7 @@ struct PipelineSnapshot {
   RegressorType type = RegressorType::kBayes;
   bool has_prior = false;  ///< false: nothing worth saving (restore() refuses it)
   StatusReason prior_reason = StatusReason::kWaitingForStandstill;
-  MassPrior prior;         ///< the prior that (re)started the regressor (sets the RLS bound)
+  MassPrior prior;  ///< the prior that (re)started the regressor (sets the RLS bound)
   long pairs_used = 0;
   // RLS (type kRls): theta = [M, mu] and its covariance P, row-major.
   double rls_theta[2] = {0.0, 0.0};
@@ -107,6 +108,10 @@ class Pipeline {
   Pipeline& operator=(const Pipeline&) = delete;
 
   StepResult step(const Sample& sample);
+  /// Takes the accepted pairs the regressor still holds back (the open Bayes batch) into the
+  /// estimate: call it after the last step of a log and before the daemon's final state save.
+  /// The estimate keeps the last step's time and inputs; returns whether it changed.
+  bool flush();
   const Estimate& estimate() const { return estimate_; }
   const MassRegressor& regressor() const { return *regressor_; }
   const PipelineParams& params() const { return params_; }
@@ -123,6 +128,8 @@ class Pipeline {
  private:
   void restart(const MassPrior& prior, StatusReason reason);
   void refresh_estimate(const Sample& sample);
+  /// The estimate's belief and status from the regressor (inputs as of the last step).
+  void refresh_belief();
 
   PipelineParams params_;
   StaticInitializer static_init_;

@@ -58,6 +58,8 @@ class RlsEstimator final : public MassRegressor {
   void reset(const MassPrior& prior) override;
   PairPrediction predict(const RegressionPair& pair) const override;
   bool update(const RegressionPair& pair) override;
+  /// Every pair enters the estimate in update(): nothing to flush.
+  bool flush() override { return false; }
   RegressorState state() const override;
   std::string_view name() const override { return "rls"; }
 

@@ -31,12 +31,12 @@ struct StaticInitParams {
   double settle_s = 1.0;
   double standstill_window_s = 2.0;
   double max_deflection_std_m = 0.002;
-  double prior_std_kg = 40.0;                ///< std of the static mass in the calibrated range,
+  double prior_std_kg = 40.0;                 ///< std of the static mass in the calibrated range,
   double prior_std_fraction_of_added = 0.15;  ///< plus this fraction of the added mass: eq. (3)
-                                             ///< puts the load at the centre of gravity
-  double out_of_range_prior_std_kg = 250.0;  ///< beyond the linear/calibrated range
-  double no_static_prior_std_kg = 400.0;     ///< driving before any standstill window
-  double mu_prior_std_n = 300.0;             ///< prior std of the model imprecision mu
+                                              ///< puts the load at the centre of gravity
+  double out_of_range_prior_std_kg = 250.0;   ///< beyond the linear/calibrated range
+  double no_static_prior_std_kg = 400.0;      ///< driving before any standstill window
+  double mu_prior_std_n = 300.0;              ///< prior std of the model imprecision mu
   double load_change_sigma = 6.0;
   double min_load_change_m = 0.0005;
   double max_grade_change_mps2 = 0.1;  ///< |a_x| difference at rest (0.1 m/s^2 ~ 1 % grade)

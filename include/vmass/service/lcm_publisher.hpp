@@ -21,8 +21,8 @@
 #include <vmass/pair_t.hpp>
 #include <vmass/status_t.hpp>
 
-#include "vmass/service/estimator_loop.hpp"
-#include "vmass/service/input_source.hpp"
+#include "vmass/runtime/input_source.hpp"
+#include "vmass/runtime/tick_step.hpp"
 #include "vmass/service/service_config.hpp"
 #include "vmass/service/tick_stats.hpp"
 
@@ -45,7 +45,7 @@ struct DaemonStatus {
   std::string detail;
   double uptime_s = 0.0;
   double tick_rate_hz = 0.0;
-  TickRecord last;  ///< latest tick (time, estimate, input ages)
+  runtime::TickRecord last;  ///< latest tick (time, estimate, input ages)
   bool has_tick = false;
   std::int64_t frames_received = 0, frames_decoded = 0, frames_unknown = 0, frames_malformed = 0,
                frames_dropped = 0, bus_errors = 0, source_reopens = 0;
@@ -56,10 +56,11 @@ struct DaemonStatus {
 };
 
 /// Reads a source's counters into *status.
-void copy_counters(const SourceCounters& counters, DaemonStatus* status);
+void copy_counters(const runtime::SourceCounters& counters, DaemonStatus* status);
 
 /// Conversions (allocate only when a string field grows past its reserved capacity).
-void to_lcm(const TickRecord& record, std::string_view estimator, vmass::mass_estimate_t* out);
+void to_lcm(const runtime::TickRecord& record, std::string_view estimator,
+            vmass::mass_estimate_t* out);
 void to_lcm(const PairEvent& event, Block block, TimeUs tick_us, vmass::pair_t* out);
 void to_lcm(const DaemonStatus& status, vmass::status_t* out);
 
@@ -69,7 +70,7 @@ class LcmPublisher {
 
   /// Publishes the record's estimate (subject to decimation) and its pairs (when enabled).
   /// Returns false when a publish failed.
-  bool on_tick(const TickRecord& record);
+  bool on_tick(const runtime::TickRecord& record);
   bool publish_status(const DaemonStatus& status);
 
   std::int64_t estimates_published() const { return estimates_; }

@@ -19,8 +19,9 @@
 // The age of an input is now - (time of its oldest term); a frame time after `now` counts as
 // age 0. Times are the caller's clock (log time for a recording, kernel receive time on a bus).
 //
-// Thread-safety: none inside; one thread owns a SignalTable (the daemon's receive thread, or a
-// replay loop). The Decoder is shared read-only.
+// Thread-safety: none inside; one thread owns a SignalTable (the daemon's estimator thread, which
+// applies the frames the receive thread hands over, or a replay loop). The Decoder is shared
+// read-only.
 #pragma once
 
 #include <array>

@@ -14,9 +14,11 @@
 //   angle                rad       rad (1), mrad (0.001), deg ° degree degrees (pi/180)
 //   pressure             Pa        Pa (1), hPa mbar (100), kPa (1000), bar (1e5), MPa (1e6),
 //                                  psi (6894.757293168)
-//   torque               N*m       Nm N*m N.m N-m (1), kNm (1000), lbf*ft lb-ft lbft ft-lb
-//   (1.3558179483314) length               m         m (1), cm (0.01), mm (0.001), um µm (1e-6), in
-//   inch (0.0254) dimensionless        1         "" - 1 (1)
+//   torque               N*m       Nm N*m N.m N-m (1), kNm (1000),
+//                                  lbf*ft lb-ft lbft ft-lb (1.3558179483314)
+//   length               m         m (1), cm (0.01), mm (0.001), um µm (1e-6),
+//                                  in inch (0.0254)
+//   dimensionless        1         "" - 1 (1)
 //
 // Each estimator input needs one dimension (input_dimension): wheel_torque torque,
 // brake_pressure pressure, accel_x/accel_y acceleration, yaw_rate angular velocity, speed speed,

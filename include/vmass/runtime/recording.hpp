@@ -1,0 +1,34 @@
+// Opening a recording as an InputSource, the same way for every front end:
+//
+//   a candump -l log   CanInputSource over a CandumpFrameSource, decoded with the config's
+//                      `can:` section (can.dbc + can.inputs; docs/signal-mapping.md)
+//   a samples CSV      SamplesCsvSource; an input older than its timeout is stale (default:
+//                      5 ticks, a gap in the recording)
+//
+// Configuration time only (allocates); not thread-safe.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vmass/config/config.hpp"
+#include "vmass/runtime/can_input_source.hpp"
+#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/samples_csv_source.hpp"
+
+namespace vmass::runtime {
+
+struct CandumpRecording {
+  std::unique_ptr<CanInputSource> source;  ///< null when the log or the mapping cannot be used
+  CandumpFrameSource* log = nullptr;       ///< the source's frames (line statistics, errors)
+  std::vector<std::string> warnings;       ///< DBC deviations that were tolerated
+  std::string error;                       ///< "file:line: key: message" when source is null
+};
+
+CandumpRecording open_candump_recording(const std::string& path, const Config& config);
+
+/// The default staleness of a samples CSV's inputs: 5 ticks.
+inline double default_samples_timeout_s(double tick_rate_hz) { return 5.0 / tick_rate_hz; }
+
+}  // namespace vmass::runtime

@@ -1,0 +1,38 @@
+#include "vmass/runtime/candump_frame_source.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace vmass::runtime {
+
+CandumpFrameSource::CandumpFrameSource(std::unique_ptr<std::istream> in, const std::string& path)
+    : path_(path), in_(std::move(in)) {
+  reader_ = std::make_unique<can::CandumpReader>(*in_, path);
+}
+
+std::unique_ptr<CandumpFrameSource> CandumpFrameSource::open(const std::string& path,
+                                                             std::string* error) {
+  auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
+  if (!*file) {
+    if (error) *error = path + ": cannot open the log: " + std::strerror(errno);
+    return nullptr;
+  }
+  return std::unique_ptr<CandumpFrameSource>(new CandumpFrameSource(std::move(file), path));
+}
+
+std::unique_ptr<CandumpFrameSource> CandumpFrameSource::from_text(std::string text,
+                                                                  const std::string& name) {
+  return std::unique_ptr<CandumpFrameSource>(
+      new CandumpFrameSource(std::make_unique<std::istringstream>(std::move(text)), name));
+}
+
+FrameSource::Read CandumpFrameSource::read(can::CanFrame* frame, int /*timeout_ms*/) {
+  can::CandumpRecord record;
+  if (!reader_->next(&record)) return Read::kEnd;
+  *frame = record.frame;
+  return Read::kFrame;
+}
+
+}  // namespace vmass::runtime

@@ -1,0 +1,23 @@
+#include "vmass/runtime/recording.hpp"
+
+#include "vmass/signals/signal_mapping.hpp"
+
+namespace vmass::runtime {
+
+CandumpRecording open_candump_recording(const std::string& path, const Config& config) {
+  CandumpRecording out;
+  signals::CanInputsLoad can = signals::load_can_inputs(config);
+  if (!can.ok()) {
+    out.error = can.error;
+    return out;
+  }
+  out.warnings = can.inputs->warnings;
+  std::unique_ptr<CandumpFrameSource> frames = CandumpFrameSource::open(path, &out.error);
+  if (!frames) return out;
+  out.log = frames.get();
+  out.source =
+      std::make_unique<CanInputSource>(std::move(frames), can.inputs->decoder, can.inputs->mapping);
+  return out;
+}
+
+}  // namespace vmass::runtime

@@ -1,0 +1,387 @@
+#include "daemon_threads.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "daemon_clock.hpp"
+#include "vmass/runtime/tick_driver.hpp"
+#include "vmass/service/state_store.hpp"
+
+namespace vmass::service::daemon {
+namespace {
+
+void apply_realtime(const RealtimeSettings& rt) {
+  if (!rt.cpu_affinity.empty()) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    for (int cpu : rt.cpu_affinity) CPU_SET(static_cast<unsigned>(cpu), &set);
+    const int err = pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+    if (err != 0) {
+      spdlog::warn(
+          "daemon.realtime.cpu_affinity: cannot pin the estimator thread ({}); running "
+          "unpinned",
+          std::strerror(err));
+    }
+  }
+  if (rt.priority > 0) {
+    sched_param param{};
+    param.sched_priority = rt.priority;
+    const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+    if (err != 0) {
+      spdlog::warn(
+          "daemon.realtime.priority: SCHED_FIFO {} refused ({}); running with normal "
+          "scheduling (grant LimitRTPRIO= or CPUSchedulingPolicy=fifo)",
+          rt.priority, std::strerror(err));
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------- receive thread
+
+/// Hands a record to the estimator thread. A recording waits for room (back-pressure: nothing of
+/// a log is lost); a live bus never waits: the record is dropped and counted.
+void push_input(const runtime::InputRecord& record, Shared& shared, bool block) {
+  while (!shared.inputs.push(record)) {
+    if (!block) {
+      shared.input_drops.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    if (shared.stop.load(std::memory_order_relaxed)) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+/// CLOCK_REALTIME and CLOCK_MONOTONIC read together: the pair of the tightest of up to three
+
+/// A live frame's time in the tick clock: its kernel stamp (CLOCK_REALTIME) moved by the tick
+/// clock's offset from CLOCK_REALTIME now. A stamp older than 1 s or in the future means the
+/// wall clock was stepped (or the frame has no stamp): then the time it was read. So the
+/// inputs' ages and timeouts never depend on CLOCK_REALTIME steps, which are common on a
+/// vehicle PC that sets its clock after boot (GNSS, NTP).
+TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan) {
+  const ClockPair now = read_clocks();
+  const TimeUs tick_clock_us = plan.t0_us + (now.mono_ns - plan.mono0_ns) / 1000;
+  const TimeUs waited = now.realtime_us - kernel_stamp_us;
+  return (waited >= 0 && waited <= 1'000'000) ? tick_clock_us - waited : tick_clock_us;
+}
+
+/// A recording: the first record is already fetched (its time is T_0); records are pushed when
+/// their log time is due at the plan's speed, never dropped.
+void receive_recording(runtime::InputSource& source, Shared& shared, const Plan& plan) {
+  runtime::InputRecord record;
+  for (;;) {
+    const std::int64_t due =
+        plan.mono0_ns +
+        static_cast<std::int64_t>(static_cast<double>(source.record_time_us() - plan.t0_us) *
+                                  1000.0 / plan.speed);
+    if (!sleep_until(due, shared.stop)) return;
+    source.fetch(&record);
+    push_input(record, shared, true);
+    if (source.read(0) != runtime::InputSource::Read::kRecord) break;
+    // A log in time order: every record stamped before the next one has been pushed.
+    shared.pushed_through_us.store(source.record_time_us() - 1, std::memory_order_release);
+  }
+  shared.input_ended.store(true, std::memory_order_release);
+}
+
+/// A live bus: frames re-stamped into the tick clock, dropped (counted) when the ring is full.
+void receive_live(runtime::InputSource& source, Shared& shared, const Plan& plan) {
+  runtime::InputRecord record;
+  while (!shared.stop.load(std::memory_order_relaxed)) {
+    switch (source.read(100)) {
+      case runtime::InputSource::Read::kRecord:
+        source.fetch(&record);
+        record.time_us = live_time_us(record.time_us, plan);
+        push_input(record, shared, false);
+        break;
+      case runtime::InputSource::Read::kTimeout:
+        break;
+      case runtime::InputSource::Read::kDown:
+      case runtime::InputSource::Read::kEnd:
+        // The source waits / re-opens with backoff inside read(); never give up.
+        sleep_until(mono_ns() + 10'000'000, shared.stop);
+        break;
+    }
+  }
+}
+
+// --------------------------------------------------------------------------- estimator thread
+
+/// The tick driver's clock at `--speed max`: every tick at once, until a stop is requested.
+class StopClock final : public runtime::TickClock {
+ public:
+  explicit StopClock(const std::atomic<bool>& stop) : stop_(stop) {}
+  bool wait_for_tick(std::int64_t /*k*/, TimeUs /*t_k*/) override {
+    return !stop_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  const std::atomic<bool>& stop_;
+};
+
+void publish_record(const runtime::TickRecord& record, Shared& shared, bool block) {
+  while (!shared.queue.push(record)) {
+    if (!block || shared.stop.load(std::memory_order_relaxed)) {
+      shared.queue_drops.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  sem_post(&shared.queue_sem);
+}
+
+void after_tick(const runtime::TickRecord& record, runtime::TickStep& step, Shared& shared,
+                const Plan& plan, TickStats& stats, std::int64_t k) {
+  publish_record(record, shared, plan.recorded);
+  shared.latest.write(record);
+  shared.heartbeat.store(k + 1, std::memory_order_release);
+  if (k % plan.snapshot_every_ticks == 0) {
+    shared.snapshot.write(SnapshotSlot{step.pipeline().snapshot(), record.estimate.time_us, true});
+  }
+  if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz)) == 0) {
+    shared.timing.write(stats.summary());
+  }
+}
+
+/// `--speed max`: log time, through the tick driver vmass-replay runs, so the estimates are
+/// identical by construction. Returns the ticks run.
+std::int64_t run_log_time(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
+                          const Plan& plan, TickStats& stats) {
+  StopClock clock(shared.stop);
+  runtime::TickDriver driver(source, plan.tick_rate_hz);
+  const runtime::TickRun run = driver.run(clock, [&](std::int64_t k, TimeUs t) {
+    const std::int64_t start = mono_ns();
+    stats.on_unpaced_tick();
+    const runtime::TickRecord& record = step.tick(k, t, source);
+    stats.on_done(mono_ns() - start, false);
+    after_tick(record, step, shared, plan, stats, k);
+  });
+  if (!run.any_record) spdlog::warn("{}: no records", source.describe());
+  shared.input_ended.store(true, std::memory_order_release);
+  return run.ticks;
+}
+
+/// The records the receive thread put in the ring, folded into the source's table up to a
+/// tick's time: records stamped after the tick wait for their own (as in offline replay, tick k
+/// sees exactly the records stamped <= T_k). Live records are stamped in the tick clock, so a
+/// record is held for one tick at most.
+class RingDrain {
+ public:
+  RingDrain(runtime::InputSource& source, Shared& shared) : source_(source), shared_(shared) {}
+
+  /// Applies every record in the ring stamped <= t; those stamped <= previous_t came too late
+  /// for their tick (counted).
+  void drain(TimeUs t, TimeUs previous_t) {
+    for (;;) {
+      if (!has_held_) {
+        if (!shared_.inputs.pop(&held_)) return;
+        has_held_ = true;
+      }
+      if (held_.time_us > t) return;
+      if (held_.time_us <= previous_t) {
+        shared_.late_records.fetch_add(1, std::memory_order_relaxed);
+      }
+      source_.apply(held_);
+      has_held_ = false;
+      if (!has_record_ || held_.time_us > last_record_us_) last_record_us_ = held_.time_us;
+      has_record_ = true;
+    }
+  }
+
+  /// A recording: waits until the receive thread has pushed every record stamped <= t (it is
+  /// due P / 2 earlier; this waits only when it lags), so that the tick sees exactly what
+  /// offline replay sees at any speed; drains meanwhile, so that a full ring cannot block the
+  /// receive thread. A held record (stamped after t) means they all came.
+  void wait_for_recording(TimeUs t, TimeUs previous_t) {
+    while (!has_held_ && shared_.pushed_through_us.load(std::memory_order_acquire) < t &&
+           !shared_.input_ended.load(std::memory_order_acquire) &&
+           !shared_.stop.load(std::memory_order_relaxed)) {
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
+      drain(t, previous_t);
+    }
+  }
+
+  /// Every record applied and t after the latest: a finished recording has no tick at t.
+  bool past_last_record(TimeUs t) const {
+    return !has_held_ && (!has_record_ || t > last_record_us_);
+  }
+
+ private:
+  runtime::InputSource& source_;
+  Shared& shared_;
+  runtime::InputRecord held_;  ///< popped from the ring, not applied yet (stamped after its tick)
+  bool has_held_ = false;
+  TimeUs last_record_us_ = 0;
+  bool has_record_ = false;
+};
+
+/// A live bus or a paced recording: tick k wakes half a period after T_k on CLOCK_MONOTONIC, so
+/// that the records stamped up to T_k have time to arrive (a recording's record stamped T_k is
+/// pushed at mono0 + k P; a live frame is read within microseconds of its kernel stamp when the
+/// receive thread is not starved). A recording's tick also waits for a lagging receive thread,
+/// so it sees exactly what offline replay sees; a live frame read more than P / 2 after its
+/// stamp is applied at the next tick and counted as late. The estimate is P / 2 (5 ms at
+/// 100 Hz) later than it could be, which nothing that follows a mass needs. Returns the ticks.
+std::int64_t run_paced(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
+                       const Plan& plan, TickStats& stats) {
+  const std::int64_t max_behind_ticks =
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(kNsPerSecond / plan.period_ns));
+  const std::int64_t offset_ns = plan.period_ns / 2;
+  RingDrain ring(source, shared);
+  TimeUs previous_t = INT64_MIN;
+  std::int64_t k = 0;
+  while (!shared.stop.load(std::memory_order_relaxed)) {
+    const std::int64_t deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
+    if (!sleep_until(deadline, shared.stop)) break;
+    const std::int64_t wake = mono_ns();
+    stats.on_wake(deadline, wake);
+    const TimeUs t = plan.tick_time(k);
+    ring.drain(t, previous_t);
+    if (plan.recorded) ring.wait_for_recording(t, previous_t);  // counts in the compute time
+    // Read before the last drain: once it is set, every record is in the ring.
+    const bool ended = plan.recorded && shared.input_ended.load(std::memory_order_acquire);
+    ring.drain(t, previous_t);
+    if (ended && ring.past_last_record(t)) break;  // tick up to the last record, as offline
+    const runtime::TickRecord& record = step.tick(k, t, source);
+    previous_t = t;
+    const std::int64_t done = mono_ns();
+    ++k;
+    const std::int64_t next_deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
+    stats.on_done(done - wake, done > next_deadline);
+    after_tick(record, step, shared, plan, stats, k - 1);
+    // A live bus after a long stall (suspend, debugger): give the missed ticks up, counted,
+    // after 1 s. A recording never skips: a replay the machine cannot keep up with runs late
+    // (overruns counted) and still gives the offline estimates.
+    const std::int64_t behind = (mono_ns() - next_deadline) / plan.period_ns;
+    if (!plan.recorded && behind > max_behind_ticks) {
+      k += behind;
+      stats.on_skipped(behind);
+    }
+  }
+  return k;
+}
+
+}  // namespace
+
+void receive_thread(runtime::InputSource& source, Shared& shared, const Plan& plan) {
+  if (!plan.recorded) {
+    receive_live(source, shared, plan);
+  } else if (plan.has_first_record) {
+    receive_recording(source, shared, plan);
+  } else {
+    shared.input_ended.store(true, std::memory_order_release);
+  }
+}
+
+void estimator_thread(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
+                      const Plan& plan) {
+  apply_realtime(plan.realtime);
+  TickStats stats(plan.period_ns);
+  const std::int64_t ticks = plan.max_speed ? run_log_time(source, step, shared, plan, stats)
+                                            : run_paced(source, step, shared, plan, stats);
+  // Final state for the main thread (status, persistence).
+  shared.timing.write(stats.summary());
+  shared.snapshot.write(
+      SnapshotSlot{step.pipeline().snapshot(), step.last().estimate.time_us, ticks > 0});
+  shared.estimator_done.store(plan.recorded && shared.input_ended.load());
+}
+
+// --------------------------------------------------------------------------- status and publisher
+
+DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stopping) {
+  DaemonStatus s;
+  s.source = ctx.source_name;
+  s.tick_rate_hz = ctx.tick_rate_hz;
+  s.uptime_s = static_cast<double>(mono_ns() - ctx.start_mono_ns) * 1e-9;
+  s.has_tick = shared.heartbeat.load(std::memory_order_acquire) > 0;
+  if (s.has_tick) s.last = shared.latest.read();
+  copy_counters(ctx.source->counters(), &s);
+  s.frames_dropped += shared.input_drops.load(std::memory_order_relaxed);
+  s.timing = shared.timing.read();
+  s.timing.ticks = shared.heartbeat.load(std::memory_order_acquire);  // fresher than the summary
+  s.publish_queue_drops = shared.queue_drops.load(std::memory_order_relaxed);
+  s.state_saves = shared.state_saves.load(std::memory_order_relaxed);
+  s.state_restored = ctx.state_restored;
+  const runtime::SourceHealth health = ctx.source->health();
+  s.detail = health.detail;
+  if (stopping) {
+    s.state = DaemonState::kStopping;
+  } else if (health.state == runtime::SourceState::kDown) {
+    s.state = DaemonState::kInputLost;
+  } else if (health.state == runtime::SourceState::kEnded ||
+             shared.input_ended.load(std::memory_order_relaxed)) {
+    s.state = DaemonState::kInputEnded;
+  } else {
+    s.state = s.has_tick ? DaemonState::kRunning : DaemonState::kStarting;
+  }
+  return s;
+}
+
+void publisher_thread(LcmPublisher& publisher, Shared& shared, const StatusContext& ctx,
+                      double status_period_s) {
+  const auto period_ns = static_cast<std::int64_t>(status_period_s * 1e9);
+  std::int64_t next_status = mono_ns() + period_ns;
+  runtime::TickRecord record;
+  for (;;) {
+    const std::int64_t wait_until = std::min(next_status, mono_ns() + kPollNs);
+    const timespec ts = to_timespec(wait_until);
+    sem_clockwait(&shared.queue_sem, CLOCK_MONOTONIC, &ts);
+    while (shared.queue.pop(&record)) publisher.on_tick(record);
+    const std::int64_t now = mono_ns();
+    if (now >= next_status) {
+      publisher.publish_status(gather_status(ctx, shared, false));
+      next_status += period_ns;
+      if (next_status <= now) next_status = now + period_ns;
+    }
+    if (shared.stop_publisher.load(std::memory_order_acquire)) {
+      while (shared.queue.pop(&record)) publisher.on_tick(record);
+      return;
+    }
+  }
+}
+
+std::string summary_line(const DaemonStatus& s) {
+  char buf[256];
+  const vmass::Estimate& e = s.last.estimate;
+  if (s.has_tick && e.mass_known) {
+    std::snprintf(buf, sizeof buf, "%s: %.0f kg [%.0f, %.0f] %s; %s %s; %lld ticks, %lld overruns",
+                  std::string(daemon_state_name(s.state)).c_str(), e.mass_kg, e.ci_low_kg,
+                  e.ci_high_kg, std::string(vmass::status_name(e.status)).c_str(), s.source.c_str(),
+                  s.detail.empty() ? "ok" : s.detail.c_str(),
+                  static_cast<long long>(s.timing.ticks),
+                  static_cast<long long>(s.timing.overruns));
+  } else {
+    std::snprintf(buf, sizeof buf, "%s: no mass yet (%s); %s %s; %lld ticks",
+                  std::string(daemon_state_name(s.state)).c_str(),
+                  s.has_tick ? std::string(vmass::reason_name(e.reason)).c_str() : "no tick",
+                  s.source.c_str(), s.detail.empty() ? "ok" : s.detail.c_str(),
+                  static_cast<long long>(s.timing.ticks));
+  }
+  return buf;
+}
+
+bool save_snapshot(const std::string& path, const SnapshotSlot& slot, std::uint64_t fingerprint,
+                   Shared& shared) {
+  if (path.empty() || !slot.valid || !slot.snapshot.has_prior) return false;
+  SavedState state;
+  state.snapshot = slot.snapshot;
+  state.saved_time_us = slot.time_us;
+  state.fingerprint = fingerprint;
+  std::string error;
+  if (!save_state_file(path, state, &error)) {
+    spdlog::warn("state not saved: {}", error);
+    return false;
+  }
+  shared.state_saves.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+}  // namespace vmass::service::daemon

@@ -1,0 +1,95 @@
+// The config loader: every error names the file, the line and the key; unknown keys are errors.
+#include "vmass/config/config.hpp"
+
+#include <gtest/gtest.h>
+
+namespace vmass {
+namespace {
+
+const char* kMinimal = R"(vehicle:
+  empty_mass_kg: 1500
+  wheelbase_m: 2.7
+  cg_to_front_axle_m: 1.2
+  wheel_radius_m: 0.31
+  brake_gain_n_per_pa: 0.0033
+  steering_ratio: 15.5
+  cornering_stiffness_front_n_per_rad: 150000
+  cornering_stiffness_rear_n_per_rad: 170000
+suspension:
+  stiffness_n_per_m: 30000
+)";
+
+TEST(Config, MinimalFileGivesDefaults) {
+  const ConfigLoad c = load_config_text(kMinimal, "mini.yaml");
+  ASSERT_TRUE(c.ok()) << c.error;
+  EXPECT_EQ(c.config->pipeline.vehicle.empty_mass_kg, 1500.0);
+  EXPECT_EQ(c.config->pipeline.estimator.type, RegressorType::kBayes);
+  EXPECT_EQ(c.config->pipeline.estimator.differencing.tick_rate_hz, 100.0);
+  EXPECT_TRUE(std::isinf(c.config->pipeline.suspension.linear_range_kg));
+}
+
+TEST(Config, UnknownKeyNamesFileLineAndKey) {
+  const std::string text =
+      std::string(kMinimal) + "estimator:\n  rls:\n    forgeting_factor: 0.99\n";
+  const ConfigLoad c = load_config_text(text, "typo.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.error, "typo.yaml:14: estimator.rls.forgeting_factor: unknown key");
+}
+
+TEST(Config, BadNumberNamesTheKey) {
+  std::string text = kMinimal;
+  text.replace(text.find("2.7"), 3, "2,7m");
+  const ConfigLoad c = load_config_text(text, "bad.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.error, "bad.yaml:3: vehicle.wheelbase_m: expected a number, got '2,7m'");
+}
+
+TEST(Config, MissingRequiredKey) {
+  std::string text = kMinimal;
+  text.erase(text.find("  wheel_radius_m: 0.31\n"), 23);
+  const ConfigLoad c = load_config_text(text, "missing.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error.find("missing.yaml:2: vehicle.wheel_radius_m: required key is missing"),
+            std::string::npos)
+      << c.error;
+}
+
+TEST(Config, OutOfRangeValueNamesKeyAndBound) {
+  const std::string text =
+      std::string(kMinimal) + "estimator:\n  rls:\n    forgetting_factor: 0.5\n";
+  const ConfigLoad c = load_config_text(text, "range.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error.find("forgetting_factor"), std::string::npos) << c.error;
+  EXPECT_NE(c.error.find("0.5"), std::string::npos) << c.error;
+}
+
+TEST(Config, BadEstimatorTypeAndBadYaml) {
+  const ConfigLoad t =
+      load_config_text(std::string(kMinimal) + "estimator:\n  type: kalman\n", "type.yaml");
+  ASSERT_FALSE(t.ok());
+  EXPECT_EQ(t.error, "type.yaml:13: estimator.type: expected 'rls' or 'bayes', got 'kalman'");
+  const ConfigLoad y = load_config_text("vehicle: [1, 2\n", "broken.yaml");
+  ASSERT_FALSE(y.ok());
+  EXPECT_EQ(y.error.rfind("broken.yaml:", 0), 0u) << y.error;
+  const ConfigLoad f = load_config("/nonexistent/vmass.yaml");
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.error, "/nonexistent/vmass.yaml: cannot open the config file");
+}
+
+TEST(Config, DifferencingStepMustBeWholeTicks) {
+  const ConfigLoad c = load_config_text(
+      std::string(kMinimal) + "estimator:\n  differencing_dt_s: 0.015\n", "dt.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error.find("estimator.differencing_dt_s"), std::string::npos) << c.error;
+}
+
+TEST(Config, RawSectionsAreKeptForTheirLayers) {
+  const ConfigLoad c = load_config_text(
+      std::string(kMinimal) + "lcm:\n  url: memq://\ncan:\n  dbc: car.dbc\n", "raw.yaml");
+  ASSERT_TRUE(c.ok()) << c.error;
+  EXPECT_EQ(c.config->lcm["url"].as<std::string>(), "memq://");
+  EXPECT_EQ(c.config->can["dbc"].as<std::string>(), "car.dbc");
+}
+
+}  // namespace
+}  // namespace vmass

@@ -1,0 +1,75 @@
+// docs/formats.md against the loaders: the configuration block it shows is a config the loaders
+// accept as it stands (every key it documents exists), and every key the loaders read is in it
+// (no key goes undocumented). The loaders' keys are the string literals they pass to
+// YamlReader::read / require / child / raw / has.
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "vmass/config/config.hpp"
+#include "vmass/service/service_config.hpp"
+
+namespace vmass {
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// The first ```yaml block of docs/formats.md.
+std::string documented_config() {
+  const std::string doc = read_file(VMASS_SOURCE_DIR "/docs/formats.md");
+  const std::string open = "```yaml\n";
+  const std::size_t begin = doc.find(open);
+  const std::size_t end = doc.find("```", begin + open.size());
+  if (begin == std::string::npos || end == std::string::npos) return "";
+  return doc.substr(begin + open.size(), end - begin - open.size());
+}
+
+/// Keys of the loaders whose sections docs/formats.md documents (the can.inputs entries are
+/// documented in docs/signal-mapping.md).
+std::set<std::string> loader_keys() {
+  std::set<std::string> keys;
+  // Calls with a literal key, and the entries of field tables ({"key", &Struct::member, ...}).
+  const std::regex call(
+      R"re(\b(?:read|require|child|raw|has)\("([a-z_0-9]+)"|\{"([a-z_0-9]+)", &[A-Za-z]+::)re");
+  for (const char* file : {"/src/config/config.cpp", "/include/vmass/config/suspension_section.hpp",
+                           "/src/service/service_config.cpp"}) {
+    const std::string source = read_file(std::string(VMASS_SOURCE_DIR) + file);
+    EXPECT_FALSE(source.empty()) << file;
+    for (std::sregex_iterator it(source.begin(), source.end(), call), end; it != end; ++it) {
+      keys.insert((*it)[1].matched ? (*it)[1].str() : (*it)[2].str());
+    }
+  }
+  return keys;
+}
+
+TEST(FormatsDoc, TheDocumentedConfigLoadsAsItStands) {
+  const std::string text = documented_config();
+  ASSERT_FALSE(text.empty()) << "no ```yaml block in docs/formats.md";
+  const ConfigLoad loaded = load_config_text(text, "docs/formats.md");
+  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const service::ServiceSettingsLoad settings = service::load_service_settings(*loaded.config);
+  EXPECT_TRUE(settings.ok()) << settings.error;
+}
+
+TEST(FormatsDoc, EveryKeyTheLoadersReadIsDocumented) {
+  const std::string text = documented_config();
+  const std::set<std::string> keys = loader_keys();
+  ASSERT_GT(keys.size(), 80u) << "the loaders' keys were not found in their sources";
+  for (const std::string& key : keys) {
+    const std::regex documented("(^|\n) *" + key + ":");
+    EXPECT_TRUE(std::regex_search(text, documented))
+        << key << " is read by the loader but not documented in docs/formats.md";
+  }
+}
+
+}  // namespace
+}  // namespace vmass
