@@ -99,7 +99,7 @@ std::vector<MassCheckRow> mass_check(const SuspensionCalibration& calibration,
   const StaticInitializer linear(vehicle, calibration.linear_suspension_params(), params);
   const StaticInitializer written(vehicle, calibration.suspension_params(), params);
   std::vector<MassCheckRow> rows;
-  for (const StepResult& s : calibration.steps) {
+  for (const BallastStepFit& s : calibration.steps) {
     MassCheckRow r;
     r.added_mass_kg = s.step.added_mass_kg;
     r.true_mass_kg = vehicle.empty_mass_kg + s.step.added_mass_kg;
@@ -177,7 +177,7 @@ std::string calibration_json(const SuspensionCalibration& cal,
        ", \"calibrated_range_kg\": " + json_num(p.calibrated_range_kg) + "}";
   o += ", \"steps\": [";
   for (std::size_t i = 0; i < cal.steps.size(); ++i) {
-    const StepResult& s = cal.steps[i];
+    const BallastStepFit& s = cal.steps[i];
     o += std::string(i ? ", " : "") + "{\"added_mass_kg\": " + json_num(s.step.added_mass_kg) +
          ", \"force_n\": " + json_num(s.force_n) +
          ", \"deflection_mm\": " + json_num(s.step.deflection_m * 1e3) +
@@ -248,7 +248,7 @@ std::string calibration_text(const SuspensionCalibration& cal,
 
   o += "per step    added_kg   force_N  deflection_mm  samples  lin_res_mm  prog_res_mm  "
        "lin_load_err_%  notes\n";
-  for (const StepResult& s : cal.steps) {
+  for (const BallastStepFit& s : cal.steps) {
     std::string notes;
     if (s.outlier) notes += "outlier ";
     if (!s.in_linear_fit) notes += "beyond-knee ";

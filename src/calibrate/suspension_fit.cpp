@@ -282,31 +282,289 @@ SuspensionParams SuspensionCalibration::suspension_params() const {
   return s;
 }
 
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
-SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
-                                   const LoadGeometry& geometry,
-                                   const SuspensionFitOptions& options) {
-  SuspensionFitResult result;
-  if (std::string m = options.validate(); !m.empty()) {
-    result.error = m;
-    return result;
-  }
-  if (std::string m = geometry.validate(); !m.empty()) {
-    result.error = m;
-    return result;
-  }
-  if (std::string m = check_steps(input_steps); !m.empty()) {
-    result.error = m;
-    return result;
-  }
-  std::vector<BallastStep> steps = input_steps;
-  std::stable_sort(steps.begin(), steps.end(), [](const BallastStep& a, const BallastStep& b) {
-    return a.added_mass_kg < b.added_mass_kg;
-  });
+namespace {
 
-  SuspensionCalibration cal;
-  cal.geometry = geometry;
-  cal.linear_tolerance = options.linear_tolerance;
+/// What every stage of the fit reads: the sorted steps as data, and the options.
+struct FitInput {
+  const Data& data;
+  const SuspensionFitOptions& options;
+  std::vector<std::size_t> all;  ///< indices of every step
+  double first_scale = 0.0;      ///< the robust scale's first guess, mm
+  bool fixed_scale = false;      ///< --robust-scale-mm given
+  std::size_t size() const { return data.size(); }
+  double start_scale() const { return fixed_scale ? options.robust_scale_mm : first_scale; }
+};
+
+struct ProgressiveRun {
+  ProgressiveParams params;
+  bool usable = false;
+  double scale_mm = 0.0;
+  Solve solve;
+};
+
+/// The best knee on a grid over the gaps between steps (the knee held), at one robust scale.
+bool best_knee_on_grid(const FitInput& in, double scale_mm, ProgressiveParams* best) {
+  const std::size_t below = static_cast<std::size_t>(in.options.min_steps_below_knee);
+  const std::size_t beyond = static_cast<std::size_t>(in.options.min_steps_beyond_knee);
+  const Data& data = in.data;
+  bool found = false;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t j = below; j + beyond <= in.size(); ++j) {  // knee between steps j-1 and j
+    for (int g = 0; g < in.options.knee_grid_per_gap; ++g) {
+      const double knee_mm = data.z_mm[j - 1] + (g + 0.5) / in.options.knee_grid_per_gap *
+                                                    (data.z_mm[j] - data.z_mm[j - 1]);
+      ProgressiveParams p;
+      if (!progressive_start(data, knee_mm, &p)) {
+        const LinearParams l =
+            linear_start(data, std::vector<std::size_t>(in.all.begin(), in.all.begin() + j));
+        p.z0_mm = l.z0_mm;
+        p.c_n_per_mm = l.c_n_per_mm;
+        p.d_mm = std::max(0.0, knee_mm - l.z0_mm);
+        p.k2_n_per_mm2 = 0.0;
+      }
+      const Solve s = solve_progressive(data, scale_mm, true, &p);
+      if (s.usable && s.cost < best_cost) {
+        best_cost = s.cost;
+        *best = p;
+        found = true;
+      }
+    }
+  }
+  return found;
+}
+
+std::vector<double> progressive_residuals_mm(const Data& data, const ProgressiveParams& p) {
+  std::vector<double> r(data.size());
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    r[k] = data.z_mm[k] - progressive_prediction(p, data.force_n[k]);
+  }
+  return r;
+}
+
+/// The progressive model: knee on a grid, then all four parameters refined; the robust scale
+/// re-estimated until it settles. Says why not in *reason when it cannot be fitted.
+ProgressiveRun fit_progressive(const FitInput& in, std::string* reason) {
+  ProgressiveRun run;
+  run.scale_mm = in.start_scale();
+  const int below = in.options.min_steps_below_knee, beyond = in.options.min_steps_beyond_knee;
+  if (in.size() < static_cast<std::size_t>(below + beyond)) {
+    *reason = "needs at least " + std::to_string(below + beyond) +
+              " steps (fit.min_steps_below_knee + fit.min_steps_beyond_knee)";
+    return run;
+  }
+  for (int pass = 0;; ++pass) {
+    ProgressiveParams best;
+    if (!best_knee_on_grid(in, run.scale_mm, &best)) {
+      run.usable = false;
+      *reason = "no knee candidate gave a usable fit";
+      return run;
+    }
+    run.params = best;
+    run.solve = solve_progressive(in.data, run.scale_mm, false, &run.params);
+    run.usable = run.solve.usable;
+    if (!run.usable) {
+      *reason = "Ceres could not make the progressive fit usable (" + run.solve.termination + ")";
+      return run;
+    }
+    if (in.fixed_scale || pass + 1 == kMaxRobustPasses) return run;
+    const double next = next_scale(progressive_residuals_mm(in.data, run.params), 4, in.options);
+    if (std::abs(next - run.scale_mm) <= 0.1 * run.scale_mm) return run;
+    run.scale_mm = next;
+  }
+}
+
+/// Is the bump stop real? Against the linear model over all steps at the same robust scale
+/// (F test), with enough steps beyond the knee and a visible effect on the top step. Sets
+/// pf->detected, or pf->reason.
+void judge_progressive(const FitInput& in, const ProgressiveRun& run, ProgressiveFit* pf) {
+  const Data& data = in.data;
+  const ProgressiveParams& prog = run.params;
+  LinearParams lin_all = linear_start(data, in.all);
+  const Solve lin_all_solve = solve_linear(data, in.all, run.scale_mm, &lin_all);
+  const double knee_mm = prog.z0_mm + prog.d_mm;
+  const long steps_beyond =
+      std::count_if(data.z_mm.begin(), data.z_mm.end(), [&](double z) { return z > knee_mm; });
+  const double top_n = data.force_n.back();
+  if (!lin_all_solve.usable) {
+    pf->reason = "the linear comparison fit failed (" + lin_all_solve.termination + ")";
+  } else if (!(prog.k2_n_per_mm2 > 0.0)) {
+    pf->reason = "the best progressive rate is 0 (no bump stop in the data)";
+  } else if (steps_beyond < static_cast<long>(in.options.min_steps_beyond_knee)) {
+    pf->reason = "only " + std::to_string(steps_beyond) + " step(s) beyond the fitted knee";
+  } else if (prog.z0_mm + top_n / prog.c_n_per_mm - progressive_prediction(prog, top_n) <=
+             2.0 * run.scale_mm) {
+    pf->reason =
+        "the fitted bump stop changes the top step's deflection by less than twice "
+        "the robust scale";
+  } else {
+    const double dof2 = static_cast<double>(in.size()) - 4.0;
+    const double cost = run.solve.cost, lin_cost = lin_all_solve.cost;
+    pf->f_statistic = cost > 0.0 ? ((lin_cost - cost) / 2.0) / (cost / dof2)
+                                 : (lin_cost > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+    pf->f_critical = boost::math::quantile(boost::math::fisher_f(2.0, dof2),
+                                           1.0 - in.options.progressive_significance);
+    if (pf->f_statistic > pf->f_critical) {
+      pf->detected = true;
+    } else {
+      pf->reason = "the progressive model is not significantly better than the linear one (F = " +
+                   fmt("%.3g", pf->f_statistic) + " <= " + fmt("%.3g", pf->f_critical) + ")";
+    }
+  }
+}
+
+/// The progressive fit's statistics, significance and, for an accepted bump stop, its
+/// parameters' uncertainty (without one, d and k2 are not identifiable).
+void describe_progressive(const FitInput& in, const ProgressiveRun& run,
+                          SuspensionCalibration* cal) {
+  const Data& data = in.data;
+  const ProgressiveParams& prog = run.params;
+  const Uncertainty u = uncertainty(progressive_residuals_mm(data, prog), data.se2_mm2,
+                                    run.scale_mm, 4, in.options.confidence);
+  ProgressiveFit& pf = cal->progressive;
+  pf.stats = {static_cast<int>(in.size()),
+              run.scale_mm,
+              u.residual_std,
+              u.step_se,
+              u.dof,
+              run.solve.cost,
+              run.solve.iterations,
+              run.solve.termination};
+  judge_progressive(in, run, &pf);
+  Eigen::MatrixXd c;
+  bool ok = false;
+  if (pf.detected) {
+    ProgressiveParams at = prog;
+    ceres::Problem problem;
+    for (std::size_t k = 0; k < in.size(); ++k) {
+      problem.AddResidualBlock(ProgressiveDeflectionResidual::Create(data.force_n[k], data.z_mm[k]),
+                               cauchy(run.scale_mm), &at.z0_mm, &at.c_n_per_mm, &at.d_mm,
+                               &at.k2_n_per_mm2);
+    }
+    ok = covariance_of(&problem, {&at.z0_mm, &at.c_n_per_mm, &at.d_mm, &at.k2_n_per_mm2}, &c);
+    if (!ok) cal->warnings.push_back("the progressive model's covariance is singular");
+  }
+  pf.zero_offset_m = estimate(prog.z0_mm, ok ? c(0, 0) : kNaN, u, 1e-3, ok);
+  pf.stiffness_n_per_m = estimate(prog.c_n_per_mm, ok ? c(1, 1) : kNaN, u, 1e3, ok);
+  // z_knee = z0 + d: var = var z0 + var d + 2 cov(z0, d).
+  pf.knee_m =
+      estimate(prog.z0_mm + prog.d_mm, ok ? c(0, 0) + c(2, 2) + 2.0 * c(0, 2) : kNaN, u, 1e-3, ok);
+  pf.rate_n_per_m2 = estimate(prog.k2_n_per_mm2, ok ? c(3, 3) : kNaN, u, 1e6, ok);
+}
+
+struct LinearRun {
+  std::vector<std::size_t> steps;  ///< the steps at or below the knee
+  LinearParams params;
+  double scale_mm = 0.0;
+  Solve solve;
+};
+
+/// The linear model on the steps at or below the knee, the robust scale re-estimated.
+LinearRun fit_linear(const FitInput& in, double knee_mm) {
+  LinearRun run;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    if (in.data.z_mm[k] <= knee_mm) run.steps.push_back(k);
+  }
+  run.params = linear_start(in.data, run.steps);
+  run.scale_mm = in.start_scale();
+  for (int pass = 0;; ++pass) {
+    run.solve = solve_linear(in.data, run.steps, run.scale_mm, &run.params);
+    if (!run.solve.usable || in.fixed_scale || pass + 1 == kMaxRobustPasses) break;
+    std::vector<double> r;
+    for (std::size_t k : run.steps) {
+      r.push_back(in.data.z_mm[k] - linear_prediction(run.params, in.data.force_n[k]));
+    }
+    const double next = next_scale(r, 2, in.options);
+    if (std::abs(next - run.scale_mm) <= 0.1 * run.scale_mm) break;
+    run.scale_mm = next;
+  }
+  return run;
+}
+
+/// The linear fit's parameters with their uncertainty, and its statistics.
+void describe_linear(const FitInput& in, const LinearRun& run, SuspensionCalibration* cal) {
+  std::vector<double> r, se2;
+  for (std::size_t k : run.steps) {
+    r.push_back(in.data.z_mm[k] - linear_prediction(run.params, in.data.force_n[k]));
+    se2.push_back(in.data.se2_mm2[k]);
+  }
+  const Uncertainty u = uncertainty(r, se2, run.scale_mm, 2, in.options.confidence);
+  Eigen::MatrixXd c;
+  LinearParams at = run.params;
+  ceres::Problem problem;
+  for (std::size_t k : run.steps) {
+    problem.AddResidualBlock(LinearDeflectionResidual::Create(in.data.force_n[k], in.data.z_mm[k]),
+                             cauchy(run.scale_mm), &at.z0_mm, &at.c_n_per_mm);
+  }
+  const bool ok = covariance_of(&problem, {&at.z0_mm, &at.c_n_per_mm}, &c);
+  LinearFit& lf = cal->linear;
+  lf.zero_offset_m = estimate(run.params.z0_mm, ok ? c(0, 0) : kNaN, u, 1e-3, ok);
+  lf.stiffness_n_per_m = estimate(run.params.c_n_per_mm, ok ? c(1, 1) : kNaN, u, 1e3, ok);
+  lf.stats = {static_cast<int>(run.steps.size()),
+              run.scale_mm,
+              u.residual_std,
+              u.step_se,
+              u.dof,
+              run.solve.cost,
+              run.solve.iterations,
+              run.solve.termination};
+  if (!std::isfinite(lf.stiffness_n_per_m.std)) {
+    cal->warnings.push_back(
+        "the linear stiffness's standard deviation is not estimable (too few steps below the "
+        "knee, or a singular covariance)");
+  }
+}
+
+/// Per step: residuals, outliers, the linear model's mass error.
+void describe_steps(const FitInput& in, const std::vector<BallastStep>& steps,
+                    const ProgressiveRun& prog, const LinearRun& lin, double knee_mm,
+                    SuspensionCalibration* cal) {
+  const Data& data = in.data;
+  const double per_kg = cal->geometry.wheel_force_per_kg();
+  const bool detected = cal->progressive.detected;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    BallastStepFit s;
+    s.step = steps[k];
+    s.force_n = data.force_n[k];
+    s.linear_residual_m = (data.z_mm[k] - linear_prediction(lin.params, data.force_n[k])) * 1e-3;
+    if (prog.usable) {
+      s.progressive_residual_m =
+          (data.z_mm[k] - progressive_prediction(prog.params, data.force_n[k])) * 1e-3;
+    }
+    s.in_linear_fit = data.z_mm[k] <= knee_mm;
+    const double residual_mm = (detected ? s.progressive_residual_m : s.linear_residual_m) * 1e3;
+    s.outlier = std::abs(residual_mm) > 2.0 * (detected ? prog.scale_mm : lin.scale_mm);
+    const double m = steps[k].added_mass_kg;
+    const double m_lin = lin.params.c_n_per_mm * (data.z_mm[k] - lin.params.z0_mm) / per_kg;
+    s.linear_mass_error = m != 0.0 ? (m_lin - m) / std::abs(m) : 0.0;
+    if (s.outlier) {
+      cal->warnings.push_back("step " + fmt("%g kg", m) + " is an outlier (residual " +
+                              fmt("%.3f mm", residual_mm) + "); the robust loss down-weighted it");
+    }
+    cal->steps.push_back(s);
+  }
+}
+
+/// The linear range (the heaviest step up to which the linear model is within tolerance) and
+/// the calibrated range, with their warnings.
+void set_ranges(const std::vector<BallastStep>& steps, const SuspensionFitOptions& options,
+                SuspensionCalibration* cal) {
+  cal->calibrated_range_kg = steps.back().added_mass_kg;
+  cal->linear_range_kg = 0.0;
+  for (const BallastStepFit& s : cal->steps) {
+    if (s.step.added_mass_kg <= 0.0 || s.outlier) continue;
+    if (std::abs(s.linear_mass_error) > options.linear_tolerance) break;
+    cal->linear_range_kg = s.step.added_mass_kg;
+  }
+  if (!(cal->linear_range_kg > 0.0)) {
+    cal->warnings.push_back("no ballast step is reproduced by the linear model within " +
+                            fmt("%g %%", 100.0 * options.linear_tolerance));
+  }
+  if (!cal->progressive.detected && !cal->progressive.reason.empty()) {
+    cal->warnings.push_back("no bump stop: " + cal->progressive.reason);
+  }
+}
+
+Data to_data(const std::vector<BallastStep>& steps, const LoadGeometry& geometry) {
   Data data;
   for (const BallastStep& s : steps) {
     data.force_n.push_back(geometry.wheel_force_n(s.added_mass_kg));
@@ -315,247 +573,47 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
         s.sample_count > 1 ? s.deflection_std_m * 1e3 / std::sqrt(s.sample_count) : 0.0;
     data.se2_mm2.push_back(std::isfinite(se_mm) ? se_mm * se_mm : 0.0);
   }
-  const std::size_t n = data.size();
-  std::vector<std::size_t> all(n);
-  std::iota(all.begin(), all.end(), 0);
-  const double first_scale =
+  return data;
+}
+
+}  // namespace
+
+SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
+                                   const LoadGeometry& geometry,
+                                   const SuspensionFitOptions& options) {
+  SuspensionFitResult result;
+  for (const std::string& m : {options.validate(), geometry.validate(), check_steps(input_steps)}) {
+    if (!m.empty()) {
+      result.error = m;
+      return result;
+    }
+  }
+  std::vector<BallastStep> steps = input_steps;
+  std::stable_sort(steps.begin(), steps.end(), [](const BallastStep& a, const BallastStep& b) {
+    return a.added_mass_kg < b.added_mass_kg;
+  });
+  const Data data = to_data(steps, geometry);
+  FitInput in{data, options, std::vector<std::size_t>(data.size()), 0.0,
+              options.robust_scale_mm > 0.0};
+  std::iota(in.all.begin(), in.all.end(), 0);
+  in.first_scale =
       std::max(options.min_robust_scale_mm, 0.01 * (data.z_mm.back() - data.z_mm.front()));
-  const bool fixed_scale = options.robust_scale_mm > 0.0;
 
-  // ---- Progressive model: knee on a grid, then refined; the robust scale re-estimated.
-  const std::size_t below = static_cast<std::size_t>(options.min_steps_below_knee);
-  const std::size_t beyond = static_cast<std::size_t>(options.min_steps_beyond_knee);
-  ProgressiveParams prog;
-  bool have_prog = false;
-  double prog_scale = fixed_scale ? options.robust_scale_mm : first_scale;
-  Solve prog_solve;
-  if (n < below + beyond) {
-    cal.progressive.reason = "needs at least " + std::to_string(below + beyond) +
-                             " steps (fit.min_steps_below_knee + fit.min_steps_beyond_knee)";
-  } else {
-    for (int pass = 0;; ++pass) {
-      // Grid over the knee with the knee held, at this robust scale.
-      bool found = false;
-      ProgressiveParams best;
-      double best_cost = std::numeric_limits<double>::infinity();
-      for (std::size_t j = below; j + beyond <= n; ++j) {  // knee between steps j-1 and j
-        for (int g = 0; g < options.knee_grid_per_gap; ++g) {
-          const double knee_mm = data.z_mm[j - 1] + (g + 0.5) / options.knee_grid_per_gap *
-                                                        (data.z_mm[j] - data.z_mm[j - 1]);
-          ProgressiveParams p;
-          if (!progressive_start(data, knee_mm, &p)) {
-            const LinearParams l =
-                linear_start(data, std::vector<std::size_t>(all.begin(), all.begin() + j));
-            p.z0_mm = l.z0_mm;
-            p.c_n_per_mm = l.c_n_per_mm;
-            p.d_mm = std::max(0.0, knee_mm - l.z0_mm);
-            p.k2_n_per_mm2 = 0.0;
-          }
-          const Solve s = solve_progressive(data, prog_scale, true, &p);
-          if (s.usable && s.cost < best_cost) {
-            best_cost = s.cost;
-            best = p;
-            found = true;
-          }
-        }
-      }
-      if (!found) {
-        have_prog = false;
-        cal.progressive.reason = "no knee candidate gave a usable fit";
-        break;
-      }
-      // Refine all four parameters from the best grid point.
-      prog = best;
-      prog_solve = solve_progressive(data, prog_scale, false, &prog);
-      have_prog = prog_solve.usable;
-      if (!have_prog) {
-        cal.progressive.reason =
-            "Ceres could not make the progressive fit usable (" + prog_solve.termination + ")";
-        break;
-      }
-      if (fixed_scale || pass + 1 == kMaxRobustPasses) break;
-      std::vector<double> r(n);
-      for (std::size_t k = 0; k < n; ++k) {
-        r[k] = data.z_mm[k] - progressive_prediction(prog, data.force_n[k]);
-      }
-      const double next = next_scale(r, 4, options);
-      if (std::abs(next - prog_scale) <= 0.1 * prog_scale) break;
-      prog_scale = next;
-    }
-  }
-
-  if (have_prog) {
-    std::vector<double> r(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      r[k] = data.z_mm[k] - progressive_prediction(prog, data.force_n[k]);
-    }
-    const Uncertainty u = uncertainty(r, data.se2_mm2, prog_scale, 4, options.confidence);
-    ProgressiveFit& pf = cal.progressive;
-    pf.stats.steps_used = static_cast<int>(n);
-    pf.stats.robust_scale_mm = prog_scale;
-    pf.stats.residual_std_mm = u.residual_std;
-    pf.stats.step_se_mm = u.step_se;
-    pf.stats.effective_dof = u.dof;
-    pf.stats.cost = prog_solve.cost;
-    pf.stats.iterations = prog_solve.iterations;
-    pf.stats.termination = prog_solve.termination;
-
-    // Significance against the linear model over all steps, at the same robust scale.
-    LinearParams lin_all = linear_start(data, all);
-    const Solve lin_all_solve = solve_linear(data, all, prog_scale, &lin_all);
-    const double knee_mm = prog.z0_mm + prog.d_mm;
-    const long steps_beyond =
-        std::count_if(data.z_mm.begin(), data.z_mm.end(), [&](double z) { return z > knee_mm; });
-    if (!lin_all_solve.usable) {
-      pf.reason = "the linear comparison fit failed (" + lin_all_solve.termination + ")";
-    } else if (!(prog.k2_n_per_mm2 > 0.0)) {
-      pf.reason = "the best progressive rate is 0 (no bump stop in the data)";
-    } else if (steps_beyond < static_cast<long>(beyond)) {
-      pf.reason = "only " + std::to_string(steps_beyond) + " step(s) beyond the fitted knee";
-    } else if (const double top_n = data.force_n.back();
-               prog.z0_mm + top_n / prog.c_n_per_mm - progressive_prediction(prog, top_n) <=
-               2.0 * prog_scale) {
-      pf.reason =
-          "the fitted bump stop changes the top step's deflection by less than twice "
-          "the robust scale";
-    } else {
-      const double dof2 = static_cast<double>(n) - 4.0;
-      pf.f_statistic =
-          prog_solve.cost > 0.0
-              ? ((lin_all_solve.cost - prog_solve.cost) / 2.0) / (prog_solve.cost / dof2)
-              : (lin_all_solve.cost > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
-      pf.f_critical = boost::math::quantile(boost::math::fisher_f(2.0, dof2),
-                                            1.0 - options.progressive_significance);
-      if (pf.f_statistic > pf.f_critical) {
-        pf.detected = true;
-      } else {
-        pf.reason = "the progressive model is not significantly better than the linear one (F = " +
-                    fmt("%.3g", pf.f_statistic) + " <= " + fmt("%.3g", pf.f_critical) + ")";
-      }
-    }
-    // Parameter uncertainty only for an accepted bump stop (without one, d and k2 are not
-    // identifiable and the covariance is singular).
-    Eigen::MatrixXd c;
-    bool ok = false;
-    if (pf.detected) {
-      ProgressiveParams at = prog;
-      ceres::Problem problem;
-      for (std::size_t k = 0; k < n; ++k) {
-        problem.AddResidualBlock(
-            ProgressiveDeflectionResidual::Create(data.force_n[k], data.z_mm[k]),
-            cauchy(prog_scale), &at.z0_mm, &at.c_n_per_mm, &at.d_mm, &at.k2_n_per_mm2);
-      }
-      ok = covariance_of(&problem, {&at.z0_mm, &at.c_n_per_mm, &at.d_mm, &at.k2_n_per_mm2}, &c);
-      if (!ok) cal.warnings.push_back("the progressive model's covariance is singular");
-    }
-    pf.zero_offset_m = estimate(prog.z0_mm, ok ? c(0, 0) : kNaN, u, 1e-3, ok);
-    pf.stiffness_n_per_m = estimate(prog.c_n_per_mm, ok ? c(1, 1) : kNaN, u, 1e3, ok);
-    // z_knee = z0 + d: var = var z0 + var d + 2 cov(z0, d).
-    pf.knee_m = estimate(prog.z0_mm + prog.d_mm, ok ? c(0, 0) + c(2, 2) + 2.0 * c(0, 2) : kNaN, u,
-                         1e-3, ok);
-    pf.rate_n_per_m2 = estimate(prog.k2_n_per_mm2, ok ? c(3, 3) : kNaN, u, 1e6, ok);
-  }
-
-  // ---- Linear model on the steps at or below the knee (all steps without a bump stop).
-  std::vector<std::size_t> lin_idx;
-  const double knee_mm =
-      cal.progressive.detected ? prog.z0_mm + prog.d_mm : std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; ++k) {
-    if (data.z_mm[k] <= knee_mm) lin_idx.push_back(k);
-  }
-  LinearParams lin = linear_start(data, lin_idx);
-  double lin_scale = fixed_scale ? options.robust_scale_mm : first_scale;
-  Solve lin_solve;
-  for (int pass = 0;; ++pass) {
-    lin_solve = solve_linear(data, lin_idx, lin_scale, &lin);
-    if (!lin_solve.usable || fixed_scale || pass + 1 == kMaxRobustPasses) break;
-    std::vector<double> r;
-    for (std::size_t k : lin_idx)
-      r.push_back(data.z_mm[k] - linear_prediction(lin, data.force_n[k]));
-    const double next = next_scale(r, 2, options);
-    if (std::abs(next - lin_scale) <= 0.1 * lin_scale) break;
-    lin_scale = next;
-  }
-  if (!lin_solve.usable) {
-    result.error = "Ceres could not make the linear fit usable (" + lin_solve.termination + ")";
+  SuspensionCalibration cal;
+  cal.geometry = geometry;
+  cal.linear_tolerance = options.linear_tolerance;
+  const ProgressiveRun prog = fit_progressive(in, &cal.progressive.reason);
+  if (prog.usable) describe_progressive(in, prog, &cal);
+  const double knee_mm = cal.progressive.detected ? prog.params.z0_mm + prog.params.d_mm
+                                                  : std::numeric_limits<double>::infinity();
+  const LinearRun lin = fit_linear(in, knee_mm);
+  if (!lin.solve.usable) {
+    result.error = "Ceres could not make the linear fit usable (" + lin.solve.termination + ")";
     return result;
   }
-  {
-    std::vector<double> r, se2;
-    for (std::size_t k : lin_idx) {
-      r.push_back(data.z_mm[k] - linear_prediction(lin, data.force_n[k]));
-      se2.push_back(data.se2_mm2[k]);
-    }
-    const Uncertainty u = uncertainty(r, se2, lin_scale, 2, options.confidence);
-    Eigen::MatrixXd c;
-    bool ok = false;
-    {
-      LinearParams at = lin;
-      ceres::Problem problem;
-      for (std::size_t k : lin_idx) {
-        problem.AddResidualBlock(LinearDeflectionResidual::Create(data.force_n[k], data.z_mm[k]),
-                                 cauchy(lin_scale), &at.z0_mm, &at.c_n_per_mm);
-      }
-      ok = covariance_of(&problem, {&at.z0_mm, &at.c_n_per_mm}, &c);
-    }
-    cal.linear.zero_offset_m = estimate(lin.z0_mm, ok ? c(0, 0) : kNaN, u, 1e-3, ok);
-    cal.linear.stiffness_n_per_m = estimate(lin.c_n_per_mm, ok ? c(1, 1) : kNaN, u, 1e3, ok);
-    cal.linear.stats.steps_used = static_cast<int>(lin_idx.size());
-    cal.linear.stats.robust_scale_mm = lin_scale;
-    cal.linear.stats.residual_std_mm = u.residual_std;
-    cal.linear.stats.step_se_mm = u.step_se;
-    cal.linear.stats.effective_dof = u.dof;
-    cal.linear.stats.cost = lin_solve.cost;
-    cal.linear.stats.iterations = lin_solve.iterations;
-    cal.linear.stats.termination = lin_solve.termination;
-    if (!std::isfinite(cal.linear.stiffness_n_per_m.std)) {
-      cal.warnings.push_back(
-          "the linear stiffness's standard deviation is not estimable (too few steps below the "
-          "knee, or a singular covariance)");
-    }
-  }
-
-  // ---- Per step: residuals, outliers, the linear model's mass error; the ranges.
-  const double per_kg = geometry.wheel_force_per_kg();
-  for (std::size_t k = 0; k < n; ++k) {
-    StepResult s;
-    s.step = steps[k];
-    s.force_n = data.force_n[k];
-    s.linear_residual_m = (data.z_mm[k] - linear_prediction(lin, data.force_n[k])) * 1e-3;
-    if (have_prog) {
-      s.progressive_residual_m =
-          (data.z_mm[k] - progressive_prediction(prog, data.force_n[k])) * 1e-3;
-    }
-    s.in_linear_fit = data.z_mm[k] <= knee_mm;
-    s.outlier = cal.progressive.detected
-                    ? std::abs(s.progressive_residual_m * 1e3) > 2.0 * prog_scale
-                    : std::abs(s.linear_residual_m * 1e3) > 2.0 * lin_scale;
-    const double m = steps[k].added_mass_kg;
-    const double m_lin = lin.c_n_per_mm * (data.z_mm[k] - lin.z0_mm) / per_kg;
-    s.linear_mass_error = m != 0.0 ? (m_lin - m) / std::abs(m) : 0.0;
-    if (s.outlier) {
-      cal.warnings.push_back(
-          "step " + fmt("%g kg", m) + " is an outlier (residual " +
-          fmt("%.3f mm",
-              (cal.progressive.detected ? s.progressive_residual_m : s.linear_residual_m) * 1e3) +
-          "); the robust loss down-weighted it");
-    }
-    cal.steps.push_back(s);
-  }
-  cal.calibrated_range_kg = steps.back().added_mass_kg;
-  cal.linear_range_kg = 0.0;
-  for (const StepResult& s : cal.steps) {
-    if (s.step.added_mass_kg <= 0.0 || s.outlier) continue;
-    if (std::abs(s.linear_mass_error) > options.linear_tolerance) break;
-    cal.linear_range_kg = s.step.added_mass_kg;
-  }
-  if (!(cal.linear_range_kg > 0.0)) {
-    cal.warnings.push_back("no ballast step is reproduced by the linear model within " +
-                           fmt("%g %%", 100.0 * options.linear_tolerance));
-  }
-  if (!cal.progressive.detected && !cal.progressive.reason.empty()) {
-    cal.warnings.push_back("no bump stop: " + cal.progressive.reason);
-  }
+  describe_linear(in, lin, &cal);
+  describe_steps(in, steps, prog, lin, knee_mm, &cal);
+  set_ranges(steps, options, &cal);
   result.calibration = std::move(cal);
   return result;
 }

@@ -7,7 +7,7 @@
 
 namespace vmass::can {
 
-std::string_view to_string(DecodeStatus status) {
+std::string_view decode_status_name(DecodeStatus status) {
   switch (status) {
     case DecodeStatus::kOk:
       return "ok";

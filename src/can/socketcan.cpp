@@ -42,7 +42,7 @@ std::string SocketCanOptions::validate() const {
   return "";
 }
 
-const char* to_string(ReadStatus status) {
+std::string_view read_status_name(ReadStatus status) {
   switch (status) {
     case ReadStatus::kFrame:
       return "frame";

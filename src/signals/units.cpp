@@ -1,11 +1,11 @@
 #include "vmass/signals/units.hpp"
+#include "vmass/core/constants.hpp"
 
 #include <cmath>
 
 namespace vmass::signals {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
 // Display spellings; lookups compare normalise()d forms.

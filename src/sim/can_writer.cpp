@@ -11,6 +11,7 @@
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
+#include "vmass/core/constants.hpp"
 
 namespace vmass::sim {
 
@@ -19,8 +20,6 @@ extern const char* const kDemoVehicleDbc;  // demo_vehicle_dbc.cpp, generated fr
 }
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// One message of the demo car: who sends it when.
 struct Schedule {

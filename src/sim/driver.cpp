@@ -1,4 +1,5 @@
 #include "vmass/sim/driver.hpp"
+#include "vmass/core/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +7,6 @@
 namespace vmass::sim {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kHoldSpeedMps = 0.5;
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "vmass/sim/road.hpp"
+#include "vmass/core/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,6 @@ std::string Road::validate() const {
 }
 
 double Road::bump_deceleration_mps2(double axle_distance_m, double speed_mps) const {
-  constexpr double kPi = 3.14159265358979323846;
   constexpr double kFullSeverityAboveMps = 8.0;
   // Bumps are sorted: find the last one at or before the axle.
   auto it = std::upper_bound(bumps.begin(), bumps.end(), axle_distance_m,

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "vmass/can/dbc.hpp"
+#include "vmass/core/constants.hpp"
 #include "vmass/sim/random_stream.hpp"
 
 namespace vmass::sim {
@@ -16,7 +17,6 @@ using Source = VehicleBus::Signal::Source;
 using Signal = VehicleBus::Signal;
 using Message = VehicleBus::Message;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 constexpr double kG = 9.80665;
 

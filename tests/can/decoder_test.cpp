@@ -10,68 +10,17 @@
 #include <random>
 #include <string>
 
+#include "allocation_counter.hpp"
+#include "bit_walk.hpp"
 #include "vmass/can/decoder.hpp"
-
-// Counts heap allocations so that tests can prove decode() makes none. AddressSanitizer brings
-// its own operator new, so under it the count is not taken (and those checks are skipped).
-static std::atomic<long> g_allocations{0};
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kCountingAllocations = false;
-#else
-constexpr bool kCountingAllocations = true;
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#endif
 
 namespace vmass::can {
 namespace {
 
+using testing::walk_physical;
+using testing::walk_raw;
+
 const std::string kDataDir = VMASS_TEST_DATA_DIR;
-
-// The reference: walk the bits one at a time, as ECOSYSTEM.md states the rules (Intel: start is
-// the LSB, next bit b+1; Motorola: start is the MSB, next bit b%8==0 ? b+15 : b-1).
-std::uint64_t walk_raw(const Signal& s, const std::uint8_t* data) {
-  std::uint64_t v = 0;
-  if (s.byte_order == ByteOrder::kIntel) {
-    for (int i = 0; i < s.length; ++i) {
-      const int b = s.start_bit + i;
-      v |= static_cast<std::uint64_t>((data[b / 8] >> (b % 8)) & 1) << i;
-    }
-  } else {
-    int b = s.start_bit;
-    for (int i = 0; i < s.length; ++i) {
-      v = (v << 1) | static_cast<std::uint64_t>((data[b / 8] >> (b % 8)) & 1);
-      b = b % 8 == 0 ? b + 15 : b - 1;
-    }
-  }
-  return v;
-}
-
-double walk_physical(const Signal& s, const std::uint8_t* data) {
-  const std::uint64_t u = walk_raw(s, data);
-  double raw;
-  if (s.value_type == ValueType::kFloat32) {
-    const auto u32 = static_cast<std::uint32_t>(u);
-    float f;
-    std::memcpy(&f, &u32, 4);
-    raw = f;
-  } else if (s.value_type == ValueType::kFloat64) {
-    std::memcpy(&raw, &u, 8);
-  } else if (s.is_signed && s.length < 64 && ((u >> (s.length - 1)) & 1)) {
-    raw = static_cast<double>(static_cast<std::int64_t>(u) - (std::int64_t{1} << (s.length - 1)) -
-                              (std::int64_t{1} << (s.length - 1)));
-  } else if (s.is_signed) {
-    raw = static_cast<double>(static_cast<std::int64_t>(u));
-  } else {
-    raw = static_cast<double>(u);
-  }
-  return raw * s.factor + s.offset;
-}
 
 bool walk_present(const Message& m, int i, const std::uint8_t* data) {
   const Signal& s = m.signals[static_cast<std::size_t>(i)];
@@ -375,19 +324,20 @@ TEST(Decoder, SelectionDecodesNamedSignalsIntoSlots) {
   ASSERT_TRUE(d->encode(speed.message, values.data(), &f));
   double slots[2] = {0, 0};
   int updates = 0;
-  const long before = g_allocations.load();
+  const long before = testing::allocations();
   const DecodeStatus st = sel.decode(f, [&](int slot, double v) {
     slots[slot] = v;
     ++updates;
   });
-  EXPECT_EQ(g_allocations.load(), before);
+  EXPECT_EQ(testing::allocations(), before);
   ASSERT_EQ(st, DecodeStatus::kOk);
   EXPECT_EQ(updates, 1);
   EXPECT_NEAR(slots[1], 123.45, 1e-9);
 }
 
 TEST(Decoder, DecodingAllocatesNothing) {
-  if (!kCountingAllocations) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+  if (!testing::counting_allocations())
+    GTEST_SKIP() << "allocation counting is off under sanitizers";
   DbcParseResult r = load_dbc_file(kDataDir + "/dbc/FORD_CADS_64.dbc");
   const auto d = Decoder::compile(r.database);
   ASSERT_TRUE(d.has_value());
@@ -405,12 +355,12 @@ TEST(Decoder, DecodingAllocatesNothing) {
   std::vector<double> values(static_cast<std::size_t>(d->max_signals_per_message()));
   std::vector<std::uint8_t> present(values.size());
   double sum = 0.0;
-  const long before = g_allocations.load();
+  const long before = testing::allocations();
   for (const CanFrame& f : frames) {
     d->decode(f, [&](int, double v) { sum += v; });
     d->decode_into(f, nullptr, values.data(), present.data());
   }
-  EXPECT_EQ(g_allocations.load(), before);
+  EXPECT_EQ(testing::allocations(), before);
   EXPECT_TRUE(std::isfinite(sum) || std::isnan(sum));
 }
 

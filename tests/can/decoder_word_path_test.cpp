@@ -10,30 +10,11 @@
 #include <set>
 #include <string>
 
+#include "bit_walk.hpp"
 #include "vmass/can/decoder.hpp"
 
 namespace vmass::can {
 namespace {
-
-// The bit walk of ECOSYSTEM.md, written again here (Intel: start is the LSB, next bit b+1;
-// Motorola: start is the MSB, next bit b%8==0 ? b+15 : b-1), then sign extension and scaling.
-double walk(const Signal& s, const std::uint8_t* data) {
-  std::uint64_t u = 0;
-  if (s.byte_order == ByteOrder::kIntel) {
-    for (int i = 0; i < s.length; ++i) {
-      const int b = s.start_bit + i;
-      u |= static_cast<std::uint64_t>((data[b / 8] >> (b % 8)) & 1) << i;
-    }
-  } else {
-    int b = s.start_bit;
-    for (int i = 0; i < s.length; ++i) {
-      u = (u << 1) | static_cast<std::uint64_t>((data[b / 8] >> (b % 8)) & 1);
-      b = b % 8 == 0 ? b + 15 : b - 1;
-    }
-  }
-  if (s.is_signed && ((u >> (s.length - 1)) & 1)) u |= ~std::uint64_t{0} << s.length;
-  return static_cast<double>(static_cast<std::int64_t>(u)) * s.factor + s.offset;
-}
 
 Decoder compile_text(const std::string& text) {
   DbcParseResult r = parse_dbc(text, "test.dbc");
@@ -77,7 +58,7 @@ TEST(DecoderWordPath, EveryClassicLengthMatchesTheWalkAndTheSignalPath) {
                            const std::string what = s.name + " " + std::to_string(s.start_bit) +
                                                     "|" + std::to_string(s.length) + " in " +
                                                     std::to_string(bytes) + " bytes";
-                           ASSERT_EQ(v, walk(s, f.data)) << what;
+                           ASSERT_EQ(v, testing::walk_physical(s, f.data)) << what;
                            double single = 0.0;
                            ASSERT_TRUE(d.signal_value(f, SignalRef{0, i}, &single));
                            ASSERT_EQ(v, single) << what;

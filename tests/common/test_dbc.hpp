@@ -12,7 +12,7 @@
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
 
-namespace vmass::signals::test {
+namespace vmass::testing {
 
 inline const char* kTestDbc = R"(VERSION ""
 
@@ -81,4 +81,4 @@ inline can::CanFrame make_frame(const can::Decoder& d, const std::string& messag
   return f;
 }
 
-}  // namespace vmass::signals::test
+}  // namespace vmass::testing

@@ -11,3 +11,9 @@ endfunction()
 # The shared test helpers' headers (tests/common): link it to use them.
 add_library(vmass_test_common INTERFACE)
 target_include_directories(vmass_test_common INTERFACE ${CMAKE_CURRENT_LIST_DIR})
+
+# The counting operator new (allocation_counter.hpp): link it into a test executable that checks
+# a hot path allocates nothing (one per executable: it replaces the global operator new).
+add_library(vmass_test_allocation_counter OBJECT
+  ${CMAKE_CURRENT_LIST_DIR}/allocation_counter.cpp)
+target_link_libraries(vmass_test_allocation_counter PUBLIC vmass_test_common PRIVATE vmass_warnings)

@@ -12,11 +12,11 @@
 #include <Eigen/Dense>
 
 #include "regression_test_data.hpp"
+#include "vmass/core/constants.hpp"
 
 namespace vmass {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kZ975 = 1.959963984540054;  // standard normal 0.975 quantile (tables)
 constexpr double kT975Dof10 = 2.228138852;   // Student-t 0.975 quantile, 10 dof (tables)
 constexpr double kT950Dof10 = 1.812461123;   // Student-t 0.95 quantile, 10 dof (tables)

@@ -1,6 +1,7 @@
 // The low-pass before differencing: unity DC gain, -3 dB at the cutoff, and the property the
 // extractors rely on: filtering both sides of M a = F keeps the relation exact.
 #include "vmass/core/low_pass_filter.hpp"
+#include "vmass/core/constants.hpp"
 
 #include <cmath>
 
@@ -8,8 +9,6 @@
 
 namespace vmass {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double steady_amplitude(double freq_hz, double cutoff_hz) {
   LowPassFilter f(cutoff_hz, 100.0);

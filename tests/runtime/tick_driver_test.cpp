@@ -45,7 +45,7 @@ struct LogInput {
 };
 
 LogInput speed_log(const std::string& text) {
-  const auto decoder = signals::test::test_decoder();
+  const auto decoder = testing::test_decoder();
   signals::SignalMapping mapping;
   EXPECT_EQ(signals::parse_signal_mapping(YAML::Load("speed: {message: Speeds, signal: SpeedKmh}"),
                                           "t", *decoder, "t", &mapping),

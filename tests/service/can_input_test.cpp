@@ -174,7 +174,6 @@ TEST(CanInputSource, SocketCanReaderThroughItsFdSeam) {
   EXPECT_EQ(source.read(1000), InputSource::Read::kEnd);
 }
 
-#ifdef VMASSD_BIN
 TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {
   const fs::path dir =
       fs::temp_directory_path() / ("vmassd_can_replay_" + std::to_string(::getpid()));
@@ -228,7 +227,6 @@ TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {
   EXPECT_NE(err.find("speed <- SPEED.SPEED"), std::string::npos) << err;  // the mapping, logged
   fs::remove_all(dir);
 }
-#endif
 
 }  // namespace
 }  // namespace vmass::service

@@ -31,8 +31,6 @@
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/signals/signal_table.hpp"
 
-#ifdef VMASSD_BIN
-
 namespace vmass {
 namespace {
 
@@ -215,17 +213,14 @@ TEST_F(DaemonTest, MaxSpeedReplayIsBitIdenticalToOfflineReplay) {
     EXPECT_EQ(last.frames_decoded, static_cast<std::int64_t>(test::make_drive({}).size()));
     EXPECT_EQ(last.publish_queue_drops, 0);
 
-#ifdef VMASS_REPLAY_BIN
     const std::string replay_csv = path("replay_" + type + ".csv");
     ASSERT_EQ(run(std::string(VMASS_REPLAY_BIN) + " --config " + config + " --samples " + csv_ +
                   " --out " + replay_csv + " > /dev/null"),
               0);
     expect_csv_matches(replay_csv, daemon);
-#endif
   }
 }
 
-#ifdef VMASS_SIM_BIN
 // The simulated paper_exp2 drive on CAN (vmass-sim's drive.log, vehicle.dbc and the can:
 // mapping of its config.yaml): `vmassd --replay drive.log --speed max` decodes the frames through
 // the SignalTable and must give exactly what an offline SignalTable loop gives (bitwise, every
@@ -336,16 +331,13 @@ TEST_F(DaemonTest, CanLogReplayIsBitIdenticalToVmassReplayLog) {
       }
     }
 
-#ifdef VMASS_REPLAY_BIN
     const std::string replay_csv = path("replay_" + type + ".csv");
     ASSERT_EQ(run(std::string(VMASS_REPLAY_BIN) + " --config " + config + " --log " + log +
                   " --out " + replay_csv + " > /dev/null 2>&1"),
               0);
     expect_csv_matches(replay_csv, daemon);
-#endif
   }
 }
-#endif
 
 // SIGKILL in the middle of a drive, then a restart: the state saved before the kill is intact
 // (atomic writes) and the new run starts from it instead of from the static prior.
@@ -429,7 +421,6 @@ TEST_F(DaemonTest, RefusesToStartOnConfigErrors) {
             0);
 }
 
-#ifdef VMASS_MONITOR_BIN
 // Two processes, UDP multicast, inside a private network namespace (nothing leaves the machine):
 // vmassd replays at real speed, vmass-monitor measures what arrives.
 TEST_F(DaemonTest, CrossProcessMulticastMeetsTheRateInAPrivateNetns) {
@@ -471,9 +462,6 @@ TEST_F(DaemonTest, CrossProcessMulticastMeetsTheRateInAPrivateNetns) {
   EXPECT_EQ(bad_s, 0);
   EXPECT_NE(read("daemon.log").find("stopped:"), std::string::npos);
 }
-#endif
 
 }  // namespace
 }  // namespace vmass
-
-#endif  // VMASSD_BIN

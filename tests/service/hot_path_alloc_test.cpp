@@ -17,27 +17,13 @@
 
 #include <gtest/gtest.h>
 
+#include "allocation_counter.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/candump_frame_source.hpp"
 #include "vmass/runtime/tick_step.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
-static std::atomic<long> g_allocations{0};
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kCountingAllocations = false;
-#else
-constexpr bool kCountingAllocations = true;
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#endif
-
-#ifdef VMASS_SIM_BIN
 namespace vmass::service {
 namespace {
 
@@ -50,7 +36,8 @@ using runtime::TickStep;
 namespace fs = std::filesystem;
 
 TEST(HotPath, EstimatorSideOfTheCanInputAllocatesNothing) {
-  if (!kCountingAllocations) GTEST_SKIP() << "allocation counting is off under sanitizers";
+  if (!testing::counting_allocations())
+    GTEST_SKIP() << "allocation counting is off under sanitizers";
   const fs::path dir = fs::temp_directory_path() / ("vmass_hot_path_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const int status = std::system(
@@ -83,10 +70,10 @@ TEST(HotPath, EstimatorSideOfTheCanInputAllocatesNothing) {
     const TimeUs t = t0 + k * 10'000;
     while (next < records.size() && records[next].time_us <= t) source.apply(records[next++]);
     loop.tick(k, t, source);
-    if (k == 100) after_first_second = g_allocations.load();
+    if (k == 100) after_first_second = testing::allocations();
   }
   ASSERT_GT(after_first_second, 1000) << "the counter does not count (set-up allocates)";
-  const long allocations = g_allocations.load() - after_first_second;
+  const long allocations = testing::allocations() - after_first_second;
   EXPECT_GT(k, 19'000);
   EXPECT_TRUE(loop.last().estimate.mass_known);
   EXPECT_GT(loop.last().estimate.pairs_used, 500);
@@ -96,4 +83,3 @@ TEST(HotPath, EstimatorSideOfTheCanInputAllocatesNothing) {
 
 }  // namespace
 }  // namespace vmass::service
-#endif

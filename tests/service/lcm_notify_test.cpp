@@ -321,7 +321,6 @@ TEST(SystemdNotifier, NoSocketNoNotifications) {
   EXPECT_FALSE(n.watchdog_due(1'000'000'000));
 }
 
-#ifdef VMASSD_BIN
 // The daemon itself under a fake systemd: READY=1 after start-up, STATUS= lines, WATCHDOG=1 while
 // the estimator ticks, STOPPING=1 on SIGTERM, exit 0.
 TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
@@ -393,7 +392,6 @@ TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
   EXPECT_EQ(std::system(("grep -q 'stopped:' " + dir + "/log.txt").c_str()), 0);
   std::system(("rm -rf " + dir).c_str());
 }
-#endif
 
 }  // namespace
 }  // namespace vmass::service

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 // Resolves `inputs` (YAML text of the can.inputs map, starting on line 1) against the test DBC.
 std::string map_inputs(const std::string& yaml, SignalMapping* out = nullptr) {
-  static const auto decoder = test::test_decoder();
+  static const auto decoder = testing::test_decoder();
   SignalMapping mapping;
   const std::string error =
       parse_signal_mapping(YAML::Load(yaml), "test.yaml", *decoder, "test.dbc", &mapping);
@@ -189,7 +189,7 @@ class CanInputsFiles : public ::testing::Test {
            ("vmass_signals_" + std::to_string(::getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_ / "dbc");
-    write("dbc/car.dbc", test::kTestDbc);
+    write("dbc/car.dbc", testing::kTestDbc);
   }
   void TearDown() override { fs::remove_all(dir_); }
 

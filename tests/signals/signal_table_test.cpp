@@ -11,28 +11,14 @@
 #include <random>
 #include <string>
 
+#include "allocation_counter.hpp"
 #include "test_dbc.hpp"
+#include "vmass/core/constants.hpp"
 #include "vmass/signals/signal_table.hpp"
-
-// Counts heap allocations (see tests/can/decoder_test.cpp); not under AddressSanitizer.
-static std::atomic<long> g_allocations{0};
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kCountingAllocations = false;
-#else
-constexpr bool kCountingAllocations = true;
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#endif
 
 namespace vmass::signals {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
 const char* kInputs =
@@ -51,7 +37,7 @@ const char* kInputs =
 
 class SignalTableTest : public ::testing::Test {
  protected:
-  SignalTableTest() : decoder_(test::test_decoder()), table_(decoder_, mapping(kInputs)) {}
+  SignalTableTest() : decoder_(testing::test_decoder()), table_(decoder_, mapping(kInputs)) {}
 
   SignalMapping mapping(const std::string& yaml) {
     SignalMapping m;
@@ -61,7 +47,7 @@ class SignalTableTest : public ::testing::Test {
   }
   can::CanFrame frame(const std::string& message, const std::map<std::string, double>& values,
                       TimeUs t_us) {
-    return test::make_frame(*decoder_, message, values, t_us);
+    return testing::make_frame(*decoder_, message, values, t_us);
   }
   void send(const std::string& message, const std::map<std::string, double>& values, TimeUs t_us) {
     EXPECT_EQ(table_.on_frame(frame(message, values, t_us)), can::DecodeStatus::kOk);
@@ -270,7 +256,8 @@ TEST_F(SignalTableTest, FramesOfAnyIdAndLengthNeverBreakIt) {
 }
 
 TEST_F(SignalTableTest, NoAllocationPerFrameOrTick) {
-  if (!kCountingAllocations) GTEST_SKIP() << "allocation counting is off under ASan";
+  if (!testing::counting_allocations())
+    GTEST_SKIP() << "allocation counting is off under sanitizers";
   can::CanFrame frames[5] = {
       frame("Speeds", {{"SpeedKmh", 36.0}}, 0),
       frame("Torques", {{"Front", 1.0}, {"Rear", 2.0}}, 0),
@@ -278,14 +265,14 @@ TEST_F(SignalTableTest, NoAllocationPerFrameOrTick) {
       frame("Level", {{"Page", 1.0}, {"LevelRR", 3.0}}, 0),
       frame("Level", {{"Page", 0.0}, {"Gear", 2.0}}, 0),
   };
-  const long before = g_allocations.load();
+  const long before = testing::allocations();
   double sum = 0.0;
   for (int i = 0; i < 10000; ++i) {
     table_.on_frame(frames[i % 5], i * 2000);
     const Sample s = table_.sample_at(i * 2000);
     sum += s.speed_mps + static_cast<double>(table_.age_us(Input::kGear, i * 2000));
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(testing::allocations() - before, 0);
   EXPECT_GT(sum, 0.0);
 }
 

@@ -5,12 +5,11 @@
 #include <set>
 #include <string>
 
+#include "vmass/core/constants.hpp"
 #include "vmass/signals/units.hpp"
 
 namespace vmass::signals {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void expect_unit(const std::string& unit, Dimension d, double scale) {
   const auto c = find_unit(unit);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim_test_util.hpp"
+#include "vmass/core/constants.hpp"
 #include "vmass/sim/driveline.hpp"
 #include "vmass/sim/imu_model.hpp"
 #include "vmass/sim/population.hpp"
@@ -22,7 +23,6 @@ namespace vmass::sim {
 namespace {
 
 constexpr double kG = 9.80665;
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(SimRealism, EffectNamesRoundTripAndRealismParses) {
   for (Effect e : all_effects()) {

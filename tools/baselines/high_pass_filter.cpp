@@ -1,4 +1,5 @@
 #include "vmass/baselines/high_pass_filter.hpp"
+#include "vmass/core/constants.hpp"
 
 #include <cmath>
 
@@ -7,7 +8,6 @@ namespace vmass::baselines {
 HighPassFilter::HighPassFilter(double cutoff_hz, double sample_rate_hz) {
   if (!(cutoff_hz > 0.0) || !(cutoff_hz < 0.5 * sample_rate_hz)) return;
   enabled_ = true;
-  constexpr double kPi = 3.14159265358979323846;
   // Bilinear transform of the pre-warped analogue prototype, K = tan(pi fc / fs).
   const double k = std::tan(kPi * cutoff_hz / sample_rate_hz);
   const double k2 = k * k;

@@ -258,7 +258,8 @@ int run_dump(const std::string& iface, long count, double idle_timeout_s, const 
       continue;
     }
     if (st != ReadStatus::kTimeout && st != ReadStatus::kReopening) {
-      std::cerr << "vmass-can dump: " << to_string(st) << ": " << reader->last_error() << "\n";
+      std::cerr << "vmass-can dump: " << read_status_name(st) << ": " << reader->last_error()
+                << "\n";
     }
     if (st == ReadStatus::kClosed) break;
     idle_s += st == ReadStatus::kInterfaceDown || st == ReadStatus::kInterfaceGone ? 0.0 : 0.1;

@@ -110,7 +110,8 @@ struct ProgressiveFit {
   FitStats stats;
 };
 
-struct StepResult {
+/// How the fit describes one ballast step (the calibration report's per-step row).
+struct BallastStepFit {
   BallastStep step;
   double force_n = 0.0;            ///< F_k
   double linear_residual_m = 0.0;  ///< z_meas - z_linear(F)
@@ -124,7 +125,7 @@ struct SuspensionCalibration {
   LoadGeometry geometry;
   LinearFit linear;
   ProgressiveFit progressive;
-  std::vector<StepResult> steps;  ///< sorted by added mass
+  std::vector<BallastStepFit> steps;  ///< sorted by added mass
   double linear_range_kg = 0.0;
   double calibrated_range_kg = 0.0;
   double linear_tolerance = 0.01;

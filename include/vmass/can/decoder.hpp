@@ -53,7 +53,7 @@ enum class DecodeStatus : std::uint8_t {
   kErrorFrame,  ///< error frame: not a message
 };
 
-std::string_view to_string(DecodeStatus status);
+std::string_view decode_status_name(DecodeStatus status);
 
 /// Counters a caller keeps over many decode() calls.
 struct DecodeStats {

@@ -27,6 +27,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vmass/can/can_frame.hpp"
@@ -69,7 +70,7 @@ enum class ReadStatus : std::uint8_t {
   kError,          ///< another receive error (see last_error()); socket kept
 };
 
-const char* to_string(ReadStatus status);
+std::string_view read_status_name(ReadStatus status);
 
 struct SocketCanStats {
   std::uint64_t frames = 0;  ///< all records returned, error frames included

@@ -1,0 +1,230 @@
+// The pass after the DBC text: multiplexing attached, every signal checked against its message
+// (layout, overlaps), attribute defaults applied. See dbc_parser.hpp.
+#include <algorithm>
+#include <bitset>
+#include <charconv>
+#include <cstdio>
+#include <string>
+
+#include "dbc_parser.hpp"
+
+namespace vmass::can::dbc_detail {
+
+void Parser::finish() {
+  // Attribute defaults.
+  const AttributeDefinition* cycle = attribute("GenMsgCycleTime");
+  const AttributeDefinition* format = attribute("VFrameFormat");
+  for (std::size_t i = 0; i < db_.messages.size(); ++i) {
+    Message& m = db_.messages[i];
+    if (cycle && !cycle->default_value.empty() &&
+        explicit_cycle_.count(static_cast<long>(i)) == 0) {
+      double v = 0.0;
+      const char* b = cycle->default_value.data();
+      if (std::from_chars(b, b + cycle->default_value.size(), v).ec == std::errc() && v >= 0 &&
+          v < 1e9) {
+        m.cycle_time_ms = static_cast<int>(v);
+      }
+    }
+    if (format && !format->default_value.empty() &&
+        explicit_format_.count(static_cast<long>(i)) == 0) {
+      m.fd = frame_format_is_fd(format->default_value);
+    }
+    if (m.length > kClassicMaxLen) m.fd = true;  // only CAN FD carries more than 8 bytes
+  }
+  // Signals the tables cannot hold are reported and left out, so that the rest of the file
+  // stays usable; the result is not ok().
+  for (Message& m : db_.messages) check_layout(m);
+  // Extended multiplexing (by name, so after the layout pass removed signals).
+  for (const MulValEntry& e : mul_vals_) {
+    const int msg = message_for(e.raw_id, "SG_MUL_VAL_");
+    Signal* sg = signal_for(msg, e.signal, "SG_MUL_VAL_");
+    if (sg == nullptr) continue;
+    Message& m = db_.messages[static_cast<std::size_t>(msg)];
+    const int sw = m.find_signal(e.switch_name);
+    if (sw < 0 || !m.signals[static_cast<std::size_t>(sw)].is_multiplexor) {
+      error_at(e.line, "SG_MUL_VAL_ " + e.signal + ": " + e.switch_name +
+                           " is not a multiplexor of message " + m.name);
+      sg->mux_parent = kMuxBroken;
+      continue;
+    }
+    sg->mux_parent = sw;
+    sg->mux_ranges = e.ranges;
+  }
+  for (Message& m : db_.messages) resolve_mux(m);
+}
+
+void Parser::check_layout(Message& m) {
+  const int payload_bits = 8 * m.length;
+  std::unordered_set<std::string_view> names;
+  std::vector<bool> drop(m.signals.size(), false);
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    const Signal& sg = m.signals[i];
+    const std::string who = "signal " + sg.name + " of message " + m.name;
+    if (!names.insert(sg.name).second) {
+      error_at(sg.line, who + ": name used twice; the second is left out");
+      drop[i] = true;
+      continue;
+    }
+    if (sg.length < 1 || sg.length > 64) {
+      error_at(sg.line, who + ": length " + std::to_string(sg.length) + " is not 1..64 bits");
+      drop[i] = true;
+      continue;
+    }
+    if ((sg.value_type == ValueType::kFloat32 && sg.length != 32) ||
+        (sg.value_type == ValueType::kFloat64 && sg.length != 64)) {
+      error_at(sg.line, who + ": SIG_VALTYPE_ float needs a length of " +
+                            (sg.value_type == ValueType::kFloat32 ? "32" : "64") + " bits");
+      drop[i] = true;
+      continue;
+    }
+    int last = 0;  // last bit in the layout's own linear numbering
+    if (sg.byte_order == ByteOrder::kIntel) {
+      last = sg.start_bit + sg.length - 1;
+    } else {
+      last = (sg.start_bit / 8) * 8 + (7 - sg.start_bit % 8) + sg.length - 1;
+    }
+    if (last >= payload_bits) {
+      error_at(sg.line,
+               who + ": bits " + std::to_string(sg.start_bit) + "|" + std::to_string(sg.length) +
+                   "@" + (sg.byte_order == ByteOrder::kIntel ? "1" : "0") + " do not fit in the " +
+                   std::to_string(m.length) + "-byte payload; signal left out");
+      drop[i] = true;
+    }
+  }
+  std::vector<Signal> kept;
+  kept.reserve(m.signals.size());
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    if (!drop[i]) kept.push_back(std::move(m.signals[i]));
+  }
+  m.signals = std::move(kept);
+}
+
+void Parser::resolve_mux(Message& m) {
+  int roots = 0, root = -1;
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    const Signal& sg = m.signals[i];
+    if (sg.is_multiplexor && !sg.mux_value) {
+      ++roots;
+      root = static_cast<int>(i);
+    }
+  }
+  std::vector<bool> drop(m.signals.size(), false);
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    Signal& sg = m.signals[i];
+    if (sg.mux_parent == kMuxBroken) {
+      drop[i] = true;
+      continue;
+    }
+    if (sg.mux_value && sg.mux_parent < 0) {
+      if (roots == 1 && root != static_cast<int>(i)) {
+        sg.mux_parent = root;
+        sg.mux_ranges = {MuxRange{*sg.mux_value, *sg.mux_value}};
+      } else {
+        error_at(sg.line, "signal " + sg.name + " of message " + m.name + " is multiplexed (m" +
+                              std::to_string(*sg.mux_value) + ") but " +
+                              (roots == 0 ? "the message has no multiplexor (M)"
+                                          : "the message has several multiplexors and no "
+                                            "SG_MUL_VAL_ names this signal's") +
+                              "; signal left out");
+        drop[i] = true;
+      }
+    }
+  }
+  // A chain that loops, or that runs through a dropped switch, drops the signal.
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (std::size_t i = 0; i < m.signals.size(); ++i) {
+      if (drop[i]) continue;
+      int p = m.signals[i].mux_parent;
+      std::size_t steps = 0;
+      bool bad = false;
+      while (p >= 0) {
+        if (drop[static_cast<std::size_t>(p)] || ++steps > m.signals.size()) {
+          bad = true;
+          break;
+        }
+        p = m.signals[static_cast<std::size_t>(p)].mux_parent;
+      }
+      if (bad) {
+        error_at(m.signals[i].line, "signal " + m.signals[i].name + " of message " + m.name +
+                                        ": its multiplexor chain is broken or loops; "
+                                        "signal left out");
+        drop[i] = true;
+        changed = true;
+      }
+    }
+  }
+  std::vector<int> new_index(m.signals.size(), -1);
+  std::vector<Signal> kept;
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    if (drop[i]) continue;
+    new_index[i] = static_cast<int>(kept.size());
+    kept.push_back(std::move(m.signals[i]));
+  }
+  for (Signal& sg : kept) {
+    if (sg.mux_parent >= 0) sg.mux_parent = new_index[static_cast<std::size_t>(sg.mux_parent)];
+  }
+  m.signals = std::move(kept);
+  check_overlaps(m);
+}
+
+std::bitset<8 * kFdMaxLen> Parser::bits_of(const Signal& sg) {
+  std::bitset<8 * kFdMaxLen> b;
+  int p = sg.byte_order == ByteOrder::kIntel ? sg.start_bit
+                                             : (sg.start_bit / 8) * 8 + (7 - sg.start_bit % 8);
+  for (int i = 0; i < sg.length; ++i, ++p) {
+    // Both layouts as positions in their own linear order; map Motorola back to bit numbers.
+    const int bit = sg.byte_order == ByteOrder::kIntel ? p : (p / 8) * 8 + (7 - p % 8);
+    if (bit >= 0 && bit < 8 * kFdMaxLen) b.set(static_cast<std::size_t>(bit));
+  }
+  return b;
+}
+
+std::vector<std::pair<int, const std::vector<MuxRange>*>> Parser::mux_chain(const Message& m,
+                                                                            std::size_t i) {
+  std::vector<std::pair<int, const std::vector<MuxRange>*>> chain;
+  const Signal* s = &m.signals[i];
+  while (s->mux_parent >= 0 && chain.size() <= m.signals.size()) {
+    chain.emplace_back(s->mux_parent, &s->mux_ranges);
+    s = &m.signals[static_cast<std::size_t>(s->mux_parent)];
+  }
+  return chain;
+}
+
+bool Parser::can_coexist(const Message& m, std::size_t i, std::size_t j) {
+  for (const auto& [p, ra] : mux_chain(m, i)) {
+    for (const auto& [q, rb] : mux_chain(m, j)) {
+      if (p != q) continue;
+      bool meet = false;
+      for (const MuxRange& x : *ra) {
+        for (const MuxRange& y : *rb) meet = meet || (x.lo <= y.hi && y.lo <= x.hi);
+      }
+      if (!meet) return false;
+    }
+  }
+  return true;
+}
+
+void Parser::check_overlaps(const Message& m) {
+  std::vector<std::bitset<8 * kFdMaxLen>> bits;
+  bits.reserve(m.signals.size());
+  for (const Signal& sg : m.signals) bits.push_back(bits_of(sg));
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if ((bits[i] & bits[j]).any() && can_coexist(m, i, j)) {
+        deviation(m.signals[i].line, "signal " + m.signals[i].name + " of message " + m.name +
+                                         " overlaps signal " + m.signals[j].name);
+        break;
+      }
+    }
+  }
+}
+
+std::string Parser::hex(std::uint32_t v) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%X", v);
+  return buf;
+}
+
+}  // namespace vmass::can::dbc_detail
