@@ -17,7 +17,7 @@ jobs=${JOBS:-$(nproc)}
 
 bash scripts/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$jobs"
+cmake --build --preset release -j "$jobs" --target vmass-suite vmass-sim
 bin=build/release/bin
 out=build/accuracy
 rm -rf "$out" && mkdir -p "$out/series"

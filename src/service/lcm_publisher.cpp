@@ -42,6 +42,7 @@ void to_lcm(const runtime::TickRecord& record, std::string_view estimator,
             vmass::mass_estimate_t* out) {
   const Estimate& e = record.estimate;
   out->utime = e.time_us;
+  out->schema_version = kLcmSchemaVersion;
   out->tick = record.tick;
   out->mass_known = e.mass_known;
   out->mass_kg = finite_or_zero(e.mass_kg);
@@ -55,6 +56,12 @@ void to_lcm(const runtime::TickRecord& record, std::string_view estimator,
   assign(&out->status_name, status_name(e.status));
   out->reason = static_cast<std::int8_t>(e.reason);
   assign(&out->reason_name, reason_name(e.reason));
+  out->reason_detail.clear();
+  out->prior_kind = e.mass_known ? static_cast<std::int8_t>(e.prior_reason) : 0;
+  assign(&out->prior_kind_name, e.mass_known ? reason_name(e.prior_reason) : "");
+  out->plausible = true;
+  out->rejection_reason.clear();
+  out->mass_model_std_kg = 0.0;
   out->invalid_inputs = static_cast<std::int32_t>(e.invalid_inputs);
   out->pairs_used = e.pairs_used;
   const BlockCounters& lon = e.blocks[static_cast<int>(Block::kLongitudinal)];
@@ -86,8 +93,49 @@ void to_lcm(const PairEvent& event, Block block, TimeUs tick_us, vmass::pair_t* 
   out->test_ratio = finite_or_zero(event.test_ratio);
 }
 
+// The per-input counters of schema 2 (zero until their source fills DaemonStatus).
+void input_counters_to_lcm(const DaemonStatus& s, vmass::status_t* out) {
+  for (auto* v : {&out->input_stale, &out->input_invalid, &out->input_implausible,
+                  &out->input_counter_fail, &out->input_checksum_fail}) {
+    v->assign(kInputCount, 0);
+  }
+  out->input_reason.resize(kInputCount);
+  for (int i = 0; i < kInputCount; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    out->input_stale[k] = s.inputs[k].stale;
+    out->input_invalid[k] = s.inputs[k].invalid;
+    out->input_implausible[k] = s.inputs[k].implausible;
+    out->input_counter_fail[k] = s.inputs[k].counter_fail;
+    out->input_checksum_fail[k] = s.inputs[k].checksum_fail;
+    out->input_reason[k] = s.inputs[k].reason;
+  }
+}
+
+void messages_to_lcm(const DaemonStatus& s, vmass::status_t* out) {
+  const auto n = s.messages.size();
+  out->num_messages = static_cast<std::int32_t>(n);
+  out->message_name.resize(n);
+  out->message_valid.resize(n);
+  out->message_counter_fail.resize(n);
+  out->message_checksum_fail.resize(n);
+  out->message_too_fast.resize(n);
+  out->message_too_long.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const MessageHealth& m = s.messages[i];
+    out->message_name[i] = m.name;
+    out->message_valid[i] = m.valid;
+    out->message_counter_fail[i] = m.counter_fail;
+    out->message_checksum_fail[i] = m.checksum_fail;
+    out->message_too_fast[i] = m.too_fast;
+    out->message_too_long[i] = m.too_long;
+  }
+  out->bus_valid = s.bus_valid;
+}
+
 void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->utime = s.last.estimate.time_us;
+  out->schema_version = kLcmSchemaVersion;
+  out->version = VMASS_VERSION;
   out->uptime_s = finite_or_zero(s.uptime_s);
   out->state = static_cast<std::int8_t>(s.state);
   assign(&out->state_name, daemon_state_name(s.state));
@@ -96,6 +144,9 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->estimate_status = static_cast<std::int8_t>(s.last.estimate.status);
   assign(&out->estimate_status_name, status_name(s.last.estimate.status));
   out->mass_kg = s.last.estimate.mass_known ? finite_or_zero(s.last.estimate.mass_kg) : 0.0;
+  out->driveline_lag_s = s.driveline_lag_s;
+  out->accel_noise_std_mps2 = s.accel_noise_std_mps2;
+  out->force_noise_std_n = s.force_noise_std_n;
   out->num_inputs = kInputCount;
   out->input_name.resize(kInputCount);
   out->input_age_s.resize(kInputCount);
@@ -106,6 +157,11 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
     out->input_age_s[k] = s.has_tick ? finite_or_zero(s.last.input_age_s[i]) : -1.0;
     out->input_valid[k] = s.has_tick && (s.last.inputs_valid & input_bit(static_cast<Input>(i)));
   }
+  input_counters_to_lcm(s, out);
+  messages_to_lcm(s, out);
+  out->frames_reordered = s.frames_reordered;
+  out->frames_late_dropped = s.frames_late_dropped;
+  out->time_jumps = s.time_jumps;
   out->frames_received = s.frames_received;
   out->frames_decoded = s.frames_decoded;
   out->frames_unknown = s.frames_unknown;
@@ -123,6 +179,7 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->wake_latency_max_us = finite_or_zero(s.timing.wake_latency_max_us);
   out->tick_compute_max_us = finite_or_zero(s.timing.compute_max_us);
   out->publish_queue_drops = s.publish_queue_drops;
+  out->publish_failures = s.publish_failures;
   out->state_saves = s.state_saves;
   out->state_restored = s.state_restored;
 }

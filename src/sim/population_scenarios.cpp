@@ -342,131 +342,174 @@ void exp2(NoiseSet eps, const DrawnVehicle& d, RandomStream& rng, ProfileBuilder
       PiecewiseLinear({{0, 0}, {1200, 0}, {1250, 0.02}, {1450, 0.02}, {1500, 0}});
 }
 
+void exp1_eps1(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  exp1(NoiseSet::kEps1, d, g, b, r, o);
+}
+void exp1_eps2(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  exp1(NoiseSet::kEps2, d, g, b, r, o);
+}
+void exp1_eps3(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  exp1(NoiseSet::kEps3, d, g, b, r, o);
+}
+void exp2_eps1(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  exp2(NoiseSet::kEps1, d, g, b, r, o);
+}
+void exp2_eps2(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  exp2(NoiseSet::kEps2, d, g, b, r, o);
+}
+void exp2_eps3(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  exp2(NoiseSet::kEps3, d, g, b, r, o);
+}
+
+void urban_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  typical(d, g, o);
+  urban(b, g);
+  o.duration_s = 300.0;
+  r.physics.road.grade_rad = slope_percent({{0, 0}, {400, 2}, {900, -1}, {1600, 1}, {2400, 0}});
+  r.physics.road.friction =
+      PiecewiseLinear({{0, 1.0}, {1500, 1.0}, {1501, 0.35}, {1560, 0.35}, {1561, 1.0}});
+}
+
+void highway_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+                 Built& o) {
+  typical(d, g, o);
+  b.start_at(110 * kKmh);
+  r.physics.initial_speed_mps = b.speed();
+  highway(b, g);
+  o.duration_s = 300.0;
+  r.physics.road.grade_rad = slope_percent({{0, 0}, {2000, 2}, {5000, -1.5}, {8000, 0}});
+}
+
+void mountain_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+                  Built& o) {
+  typical(d, g, o);
+  mountain(b, g);
+  o.duration_s = 300.0;
+  const double s = d.vehicle_class == VehicleClass::kHeavyTruck ? 0.6 : 1.0;
+  r.physics.road.grade_rad = slope_percent({{0, 0},
+                                            {200, 8 * s},
+                                            {1200, 10 * s},
+                                            {1800, 6 * s},
+                                            {2200, -8 * s},
+                                            {3200, -10 * s},
+                                            {3800, -4 * s},
+                                            {4200, 0}});
+  r.physics.road.bank_rad = PiecewiseLinear({{0, 0},
+                                             {600, 0},
+                                             {650, 0.04},
+                                             {800, 0.04},
+                                             {850, 0},
+                                             {2600, 0},
+                                             {2650, -0.04},
+                                             {2800, -0.04},
+                                             {2850, 0}});
+}
+
+void heavy_rear_load_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun&,
+                         Built& o) {
+  o.payload = heavy_rear(d, g);
+  paper_exp2(b);
+  o.duration_s = std::max(200.0, b.time() + 5.0);
+}
+
+void windy_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+               Built& o) {
+  typical(d, g, o);
+  paper_exp2(b);
+  b.change_to(100 * kKmh, 1.0);
+  b.cruise(40);
+  b.change_to(0, 1.5);
+  o.duration_s = b.time() + 5.0;
+  const double w = g.uniform(8, 15);
+  const bool head = g.chance(0.5);
+  r.physics.wind = {head ? w : 0.3 * w, head ? 0.3 * w : w, g.uniform(3, 5), g.uniform(2, 6)};
+}
+
+void rough_road_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+                    Built& o) {
+  typical(d, g, o);
+  rural(b, g);
+  o.duration_s = std::max(200.0, b.time() + 5.0);
+  r.physics.road.roughness = PiecewiseLinear(g.uniform(1.5, 3.0));
+  for (double x = 300; x < 6000; x += g.uniform(400, 900)) {
+    r.physics.road.bumps.push_back({x, g.uniform(1.0, 3.0)});
+  }
+}
+
+void torque_bias_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+                     Built& o) {
+  typical(d, g, o);
+  paper_exp2(b);
+  o.duration_s = std::max(200.0, b.time() + 5.0);
+  r.bus.torque_report_scale *= 1.03;
+}
+
+void load_change_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun&,
+                     Built& o) {
+  typical(d, g, o);
+  paper_exp2(b);
+  const double stop = b.time();
+  b.stand(25);
+  LoadChange c;
+  c.start_s = stop + 5.0;
+  c.duration_s = 5.0;
+  c.items = added_at_stop(d, g);
+  o.changes.push_back(c);
+  paper_exp2(b);
+  o.duration_s = b.time() + 5.0;
+}
+
+void sensor_faults_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+                       Built& o) {
+  typical(d, g, o);
+  paper_exp2(b);
+  o.duration_s = std::max(200.0, b.time() + 5.0);
+  using K = BusFault::Kind;
+  r.bus.faults = {{K::kMissing, "dynamics", 40.0, 3.0},
+                  {K::kFrozen, d.sensors.lateral ? "steering" : "speed", 60.0, 10.0},
+                  {K::kAbsurd, "speed", 90.0, 0.05},
+                  {K::kAbsurd, "dynamics", 95.0, 0.05},
+                  {K::kUnknownBurst, "", 110.0, 0.5},
+                  {K::kMalformedBurst, "powertrain", 130.0, 0.5}};
+}
+
 const std::vector<ScenarioEntry>& registry() {
-  using N = NoiseSet;
   static const std::vector<ScenarioEntry> entries = {
       {"paper_exp1_eps1",
-       "paper experiment 1, eps1 = N(0, 60^2) N on the wheel force: slopes, "
-       "resistive loads",
-       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp1(N::kEps1, d, g, b, r, o); }},
-      {"paper_exp1_eps2", "paper experiment 1, eps2 = N(300, 60^2) N: a force offset",
-       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp1(N::kEps2, d, g, b, r, o); }},
+       "paper experiment 1, eps1 = N(0, 60^2) N on the wheel force: slopes, resistive loads",
+       exp1_eps1},
+      {"paper_exp1_eps2", "paper experiment 1, eps2 = N(300, 60^2) N: a force offset", exp1_eps2},
       {"paper_exp1_eps3", "paper experiment 1, eps3 = U(0, 600) N: non-Gaussian force noise",
-       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp1(N::kEps3, d, g, b, r, o); }},
+       exp1_eps3},
       {"paper_exp2_eps1", "paper experiment 2, eps1: accelerating, braking, slaloms, turns",
-       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp2(N::kEps1, d, g, b, r, o); }},
-      {"paper_exp2_eps2", "paper experiment 2, eps2: a force offset",
-       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp2(N::kEps2, d, g, b, r, o); }},
-      {"paper_exp2_eps3", "paper experiment 2, eps3: non-Gaussian force noise",
-       [](auto& d, auto& g, auto& b, auto& r, auto& o) { exp2(N::kEps3, d, g, b, r, o); }},
+       exp2_eps1},
+      {"paper_exp2_eps2", "paper experiment 2, eps2: a force offset", exp2_eps2},
+      {"paper_exp2_eps3", "paper experiment 2, eps3: non-Gaussian force noise", exp2_eps3},
       {"urban", "stop-and-go: short excitations, shifts, creep, junction turns, a low-mu stop",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
-         typical(d, g, o);
-         urban(b, g);
-         o.duration_s = 300.0;
-         r.physics.road.grade_rad =
-             slope_percent({{0, 0}, {400, 2}, {900, -1}, {1600, 1}, {2400, 0}});
-         r.physics.road.friction =
-             PiecewiseLinear({{0, 1.0}, {1500, 1.0}, {1501, 0.35}, {1560, 0.35}, {1561, 1.0}});
-       }},
+       urban_run},
       {"highway", "steady high speed and lane changes: little excitation, aero, vibration",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
-         typical(d, g, o);
-         b.start_at(110 * kKmh);
-         r.physics.initial_speed_mps = b.speed();
-         highway(b, g);
-         o.duration_s = 300.0;
-         r.physics.road.grade_rad = slope_percent({{0, 0}, {2000, 2}, {5000, -1.5}, {8000, 0}});
-       }},
+       highway_run},
       {"mountain", "grades to 10 %, hairpins on banked curves, long braking (brake fade)",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
-         typical(d, g, o);
-         mountain(b, g);
-         o.duration_s = 300.0;
-         const double s = d.vehicle_class == VehicleClass::kHeavyTruck ? 0.6 : 1.0;
-         r.physics.road.grade_rad = slope_percent({{0, 0},
-                                                   {200, 8 * s},
-                                                   {1200, 10 * s},
-                                                   {1800, 6 * s},
-                                                   {2200, -8 * s},
-                                                   {3200, -10 * s},
-                                                   {3800, -4 * s},
-                                                   {4200, 0}});
-         r.physics.road.bank_rad = PiecewiseLinear({{0, 0},
-                                                    {600, 0},
-                                                    {650, 0.04},
-                                                    {800, 0.04},
-                                                    {850, 0},
-                                                    {2600, 0},
-                                                    {2650, -0.04},
-                                                    {2800, -0.04},
-                                                    {2850, 0}});
-       }},
+       mountain_run},
       {"heavy_rear_load", "payload near capacity in the boot / rear: eq. (3) over-reads, bump stop",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun&, Built& o) {
-         o.payload = heavy_rear(d, g);
-         paper_exp2(b);
-         o.duration_s = std::max(200.0, b.time() + 5.0);
-       }},
-      {"windy", "mean head or cross wind of 8-15 m/s with 3-5 m/s gusts",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
-         typical(d, g, o);
-         paper_exp2(b);
-         b.change_to(100 * kKmh, 1.0);
-         b.cruise(40);
-         b.change_to(0, 1.5);
-         o.duration_s = b.time() + 5.0;
-         const double w = g.uniform(8, 15);
-         const bool head = g.chance(0.5);
-         r.physics.wind = {head ? w : 0.3 * w, head ? 0.3 * w : w, g.uniform(3, 5),
-                           g.uniform(2, 6)};
-       }},
-      {"rough_road", "rural road on a rough surface, a village with speed bumps",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
-         typical(d, g, o);
-         rural(b, g);
-         o.duration_s = std::max(200.0, b.time() + 5.0);
-         r.physics.road.roughness = PiecewiseLinear(g.uniform(1.5, 3.0));
-         for (double x = 300; x < 6000; x += g.uniform(400, 900)) {
-           r.physics.road.bumps.push_back({x, g.uniform(1.0, 3.0)});
-         }
-       }},
+       heavy_rear_load_run},
+      {"windy", "mean head or cross wind of 8-15 m/s with 3-5 m/s gusts", windy_run},
+      {"rough_road", "rural road on a rough surface, a village with speed bumps", rough_road_run},
       {"torque_bias", "the ECU's torque reads 3 % high (known-scale config): what a bias does",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
-         typical(d, g, o);
-         paper_exp2(b);
-         o.duration_s = std::max(200.0, b.time() + 5.0);
-         r.bus.torque_report_scale *= 1.03;
-       }},
+       torque_bias_run},
       {"load_change", "drive, stop, 30-50 % of the payload capacity loaded at the stop, drive",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun&, Built& o) {
-         typical(d, g, o);
-         paper_exp2(b);
-         const double stop = b.time();
-         b.stand(25);
-         LoadChange c;
-         c.start_s = stop + 5.0;
-         c.duration_s = 5.0;
-         c.items = added_at_stop(d, g);
-         o.changes.push_back(c);
-         paper_exp2(b);
-         o.duration_s = b.time() + 5.0;
-       }},
+       load_change_run},
       {"sensor_faults",
-       "a message missing 3 s, a frozen sensor 10 s, absurd values, bursts of "
-       "unknown and malformed frames",
-       [](const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r, Built& o) {
-         typical(d, g, o);
-         paper_exp2(b);
-         o.duration_s = std::max(200.0, b.time() + 5.0);
-         using K = BusFault::Kind;
-         r.bus.faults = {{K::kMissing, "dynamics", 40.0, 3.0},
-                         {K::kFrozen, d.sensors.lateral ? "steering" : "speed", 60.0, 10.0},
-                         {K::kAbsurd, "speed", 90.0, 0.05},
-                         {K::kAbsurd, "dynamics", 95.0, 0.05},
-                         {K::kUnknownBurst, "", 110.0, 0.5},
-                         {K::kMalformedBurst, "powertrain", 130.0, 0.5}};
-       }},
+       "a message missing 3 s, a frozen sensor 10 s, absurd values, bursts of unknown and "
+       "malformed frames",
+       sensor_faults_run},
   };
   return entries;
 }

@@ -93,142 +93,175 @@ VehicleBus::VehicleBus(const DrawnVehicle& vehicle) : vehicle_(vehicle) {
   build_dbc();
 }
 
-// Message layouts: every signal on whole bytes, so byte order never makes signals overlap.
-void VehicleBus::build_messages() {
-  const CanConventions& c = vehicle_.can;
-  const VehicleSensors& s = vehicle_.sensors;
-  const bool truck = vehicle_.vehicle_class == VehicleClass::kHeavyTruck;
-  RandomStream rng(vehicle_.seed * 16 + static_cast<std::uint64_t>(vehicle_.vehicle_class),
-                   hash_name("bus.layout"));
-  std::uint32_t next_id = c.id_base;
-  auto message = [&](std::string logical, std::string name, double period, double latency) {
+namespace {
+
+// Message layouts, one function per logical message, in the order they draw from one random
+// stream. Every signal sits on whole bytes, so byte order never makes signals overlap.
+class MessageLayout {
+ public:
+  explicit MessageLayout(const DrawnVehicle& v)
+      : c_(v.can),
+        s_(v.sensors),
+        truck_(v.vehicle_class == VehicleClass::kHeavyTruck),
+        rng_(v.seed * 16 + static_cast<std::uint64_t>(v.vehicle_class), hash_name("bus.layout")),
+        next_id_(v.can.id_base) {}
+
+  std::vector<Message> build() {
+    std::vector<Message> out;
+    out.push_back(powertrain());
+    out.push_back(dynamics());
+    if (s_.speed == SpeedSignal::kEsc) out.push_back(speed());
+    out.push_back(brake());
+    if (s_.lateral) out.push_back(steering());
+    if (s_.deflection) out.push_back(level());
+    out.push_back(cluster());
+    others(out);
+    return out;
+  }
+
+ private:
+  Message message(std::string logical, std::string name, double period, double latency) {
     Message m;
     m.logical = std::move(logical);
     m.name = std::move(name);
-    m.id = next_id;
-    next_id += 0x10 + 0x8 * static_cast<std::uint32_t>(rng.index(3));
-    m.extended = c.extended_ids;
+    m.id = next_id_;
+    next_id_ += 0x10 + 0x8 * static_cast<std::uint32_t>(rng_.index(3));
+    m.extended = c_.extended_ids;
     if (m.extended) m.id |= 0x18FF0000u;
     m.period_s = period;
     m.latency_s = latency;
-    m.phase_s = rng.uniform(0.0, period);
+    m.phase_s = rng_.uniform(0.0, period);
     return m;
-  };
-
-  Message pt = message("powertrain", "PT_Torque", c.torque_period_s, c.torque_latency_s);
-  const double tq_factor = truck ? 2.0 : (rng.chance(0.5) ? 0.5 : 1.0);
-  if (s.torque == TorqueSignal::kEngineTorque) {
-    pt.signals.push_back(make(Source::kEngineTorque, "EngineTorque", 0, 16, true,
-                              truck ? 1.0 : 0.25, 0.0, "Nm", 1.0, "engine_torque"));
-    pt.signals.push_back(make(Source::kEngineSpeed, "EngineSpeed", 2, 16, false, 0.25, 0.0, "rpm",
-                              2.0 * kPi / 60.0, "engine_speed"));
-  } else if (s.torque == TorqueSignal::kPerAxle) {
-    pt.signals.push_back(make(Source::kWheelTorqueFront, "WheelTorque_Front", 0, 16, true,
-                              tq_factor, 0.0, "Nm", 1.0, "wheel_torque"));
-    pt.signals.push_back(make(Source::kWheelTorqueRear, "WheelTorque_Rear", 2, 16, true, tq_factor,
-                              0.0, "Nm", 1.0, "wheel_torque"));
-  } else {
-    pt.signals.push_back(make(Source::kWheelTorque, "WheelTorque", 0, 16, true, tq_factor, 0.0,
-                              "Nm", 1.0, "wheel_torque"));
   }
-  pt.signals.push_back(make(Source::kGear, "GearEngaged", 4, 8, true, 1.0, 0.0, "", 1.0, "gear"));
-  messages_.push_back(pt);
 
-  Message dyn = message("dynamics", "ESC_Dynamics", c.dynamics_period_s, c.dynamics_latency_s);
-  const double a_factor = c.accel_in_g ? 0.0005 : (rng.chance(0.5) ? 0.005 : 0.01);
-  const std::string a_unit = c.accel_in_g ? "g" : "m/s^2";
-  const double a_si = c.accel_in_g ? kG : 1.0;
-  dyn.signals.push_back(
-      make(Source::kAccelX, "LongAccel", 0, 16, true, a_factor, 0.0, a_unit, a_si, "accel_x"));
-  if (s.lateral) {
+  Message powertrain() {
+    Message pt = message("powertrain", "PT_Torque", c_.torque_period_s, c_.torque_latency_s);
+    const double tq = truck_ ? 2.0 : (rng_.chance(0.5) ? 0.5 : 1.0);
+    if (s_.torque == TorqueSignal::kEngineTorque) {
+      pt.signals.push_back(make(Source::kEngineTorque, "EngineTorque", 0, 16, true,
+                                truck_ ? 1.0 : 0.25, 0.0, "Nm", 1.0, "engine_torque"));
+      pt.signals.push_back(make(Source::kEngineSpeed, "EngineSpeed", 2, 16, false, 0.25, 0.0, "rpm",
+                                2.0 * kPi / 60.0, "engine_speed"));
+    } else if (s_.torque == TorqueSignal::kPerAxle) {
+      pt.signals.push_back(make(Source::kWheelTorqueFront, "WheelTorque_Front", 0, 16, true, tq,
+                                0.0, "Nm", 1.0, "wheel_torque"));
+      pt.signals.push_back(make(Source::kWheelTorqueRear, "WheelTorque_Rear", 2, 16, true, tq, 0.0,
+                                "Nm", 1.0, "wheel_torque"));
+    } else {
+      pt.signals.push_back(make(Source::kWheelTorque, "WheelTorque", 0, 16, true, tq, 0.0, "Nm",
+                                1.0, "wheel_torque"));
+    }
+    pt.signals.push_back(make(Source::kGear, "GearEngaged", 4, 8, true, 1.0, 0.0, "", 1.0, "gear"));
+    return pt;
+  }
+
+  Message dynamics() {
+    Message dyn = message("dynamics", "ESC_Dynamics", c_.dynamics_period_s, c_.dynamics_latency_s);
+    const double factor = c_.accel_in_g ? 0.0005 : (rng_.chance(0.5) ? 0.005 : 0.01);
+    const std::string unit = c_.accel_in_g ? "g" : "m/s^2";
+    const double si = c_.accel_in_g ? kG : 1.0;
     dyn.signals.push_back(
-        make(Source::kAccelY, "LatAccel", 2, 16, true, a_factor, 0.0, a_unit, a_si, "accel_y"));
+        make(Source::kAccelX, "LongAccel", 0, 16, true, factor, 0.0, unit, si, "accel_x"));
+    if (!s_.lateral) return dyn;
+    dyn.signals.push_back(
+        make(Source::kAccelY, "LatAccel", 2, 16, true, factor, 0.0, unit, si, "accel_y"));
     Signal yaw =
-        c.yaw_in_rad
+        c_.yaw_in_rad
             ? make(Source::kYawRate, "YawRate", 4, 16, true, 0.0002, 0.0, "rad/s", 1.0, "yaw_rate")
             : make(Source::kYawRate, "YawRate", 4, 16, true, 0.01, 0.0, "deg/s", kDeg, "yaw_rate");
-    yaw.sign = c.yaw_positive_right ? -1.0 : 1.0;
+    yaw.sign = c_.yaw_positive_right ? -1.0 : 1.0;
     dyn.signals.push_back(yaw);
+    return dyn;
   }
-  messages_.push_back(dyn);
 
-  if (s.speed == SpeedSignal::kEsc) {
-    Message spd = message("speed", "ESC_Speed", c.speed_period_s, c.speed_latency_s);
+  Message speed() {
+    Message spd = message("speed", "ESC_Speed", c_.speed_period_s, c_.speed_latency_s);
     spd.signals.push_back(make(Source::kSpeed, "VehicleSpeed", 0, 16, false,
-                               rng.chance(0.5) ? 0.01 : 0.0078125, 0.0, "km/h", 1.0 / 3.6,
+                               rng_.chance(0.5) ? 0.01 : 0.0078125, 0.0, "km/h", 1.0 / 3.6,
                                "speed"));
-    messages_.push_back(spd);
+    return spd;
   }
 
-  Message brk = message("brake", "ESC_Brake", c.brake_period_s, c.brake_latency_s);
-  if (s.brake_pressure) {
-    if (truck) {
-      brk.signals.push_back(make(Source::kBrakePressure, "BrakePressure", 0, 16, false, 0.001, 0.0,
-                                 "bar", 1e5, "brake_pressure"));
-    } else if (c.pressure_in_kpa) {
-      brk.signals.push_back(make(Source::kBrakePressure, "BrakePressure", 0, 16, false, 1.0, 0.0,
-                                 "kPa", 1e3, "brake_pressure"));
-    } else {
-      brk.signals.push_back(make(Source::kBrakePressure, "BrakePressure", 0, 16, false, 0.01, 0.0,
-                                 "bar", 1e5, "brake_pressure"));
+  Message brake() {
+    Message brk = message("brake", "ESC_Brake", c_.brake_period_s, c_.brake_latency_s);
+    if (s_.brake_pressure) {
+      // Trucks: air pressure in bar; cars: hydraulic pressure in bar or kPa.
+      const bool kpa = !truck_ && c_.pressure_in_kpa;
+      const double factor = truck_ ? 0.001 : (kpa ? 1.0 : 0.01);
+      brk.signals.push_back(make(Source::kBrakePressure, "BrakePressure", 0, 16, false, factor, 0.0,
+                                 kpa ? "kPa" : "bar", kpa ? 1e3 : 1e5, "brake_pressure"));
     }
+    brk.signals.push_back(make(Source::kBrakeSwitch, "BrakeLightSwitch", 2, 8, false, 1.0, 0.0, "",
+                               1.0, s_.brake_pressure ? "" : "brake_switch"));
+    return brk;
   }
-  brk.signals.push_back(make(Source::kBrakeSwitch, "BrakeLightSwitch", 2, 8, false, 1.0, 0.0, "",
-                             1.0, s.brake_pressure ? "" : "brake_switch"));
-  messages_.push_back(brk);
 
-  if (s.lateral) {
-    Message st = message("steering", "EPS_Steering", c.steering_period_s, c.steering_latency_s);
+  Message steering() {
+    Message st = message("steering", "EPS_Steering", c_.steering_period_s, c_.steering_latency_s);
     Signal a = make(Source::kSteering, "SteeringWheelAngle", 0, 16, true,
-                    rng.chance(0.5) ? 0.1 : 0.04375, 0.0, "deg", kDeg, "steering_wheel_angle");
-    a.sign = c.steering_positive_right ? -1.0 : 1.0;
+                    rng_.chance(0.5) ? 0.1 : 0.04375, 0.0, "deg", kDeg, "steering_wheel_angle");
+    a.sign = c_.steering_positive_right ? -1.0 : 1.0;
     st.signals.push_back(a);
-    messages_.push_back(st);
+    return st;
   }
 
-  if (s.deflection) {
-    Message lvl = message("level", "Chassis_Level", c.level_period_s, c.level_latency_s);
-    const double f = rng.chance(0.5) ? 0.1 : 0.01;
-    if (c.deflection_muxed) {
-      Signal page = make(Source::kMuxPage, "Level_Page", 0, 8, false, 1.0, 0.0, "", 1.0);
-      page.is_switch = true;
-      lvl.signals.push_back(page);
-      Signal fl = make(Source::kLevelOther, "Level_FrontLeft", 1, 16, true, f, 0.0, "mm", 1e-3);
-      Signal fr = make(Source::kLevelOther, "Level_FrontRight", 3, 16, true, f, 0.0, "mm", 1e-3);
-      Signal rl = make(Source::kLevelOther, "Level_RearLeft", 1, 16, true, f, 0.0, "mm", 1e-3);
-      Signal rr = make(Source::kLevelRearRight, "Level_RearRight", 3, 16, true, f, 0.0, "mm", 1e-3,
-                       "rear_right_deflection");
-      fl.mux = fr.mux = 0;
-      rl.mux = rr.mux = 1;
-      lvl.signals.insert(lvl.signals.end(), {fl, fr, rl, rr});
-    } else {
+  Message level() {
+    Message lvl = message("level", "Chassis_Level", c_.level_period_s, c_.level_latency_s);
+    const double f = rng_.chance(0.5) ? 0.1 : 0.01;
+    if (!c_.deflection_muxed) {
       lvl.signals.push_back(make(Source::kLevelRearRight, "Level_RearRight", 0, 16, true, f, 0.0,
                                  "mm", 1e-3, "rear_right_deflection"));
+      return lvl;
     }
-    messages_.push_back(lvl);
+    Signal page = make(Source::kMuxPage, "Level_Page", 0, 8, false, 1.0, 0.0, "", 1.0);
+    page.is_switch = true;
+    lvl.signals.push_back(page);
+    Signal fl = make(Source::kLevelOther, "Level_FrontLeft", 1, 16, true, f, 0.0, "mm", 1e-3);
+    Signal fr = make(Source::kLevelOther, "Level_FrontRight", 3, 16, true, f, 0.0, "mm", 1e-3);
+    Signal rl = make(Source::kLevelOther, "Level_RearLeft", 1, 16, true, f, 0.0, "mm", 1e-3);
+    Signal rr = make(Source::kLevelRearRight, "Level_RearRight", 3, 16, true, f, 0.0, "mm", 1e-3,
+                     "rear_right_deflection");
+    fl.mux = fr.mux = 0;
+    rl.mux = rr.mux = 1;
+    lvl.signals.insert(lvl.signals.end(), {fl, fr, rl, rr});
+    return lvl;
   }
 
-  Message ic = message("cluster", "IC_Display", c.display_period_s, c.display_latency_s);
-  ic.protected_frame = false;
-  ic.length = 6;
-  ic.signals.push_back(make(Source::kDisplaySpeed, "DisplaySpeed", 0, 16, false,
-                            rng.chance(0.5) ? 1.0 : 0.5, 0.0, "km/h", 1.0 / 3.6,
-                            s.speed == SpeedSignal::kDisplay ? "speed" : ""));
-  ic.signals.push_back(make(Source::kOdometer, "Odometer", 2, 32, false, 0.1, 0.0, "km", 1000.0));
-  messages_.push_back(ic);
+  Message cluster() {
+    Message ic = message("cluster", "IC_Display", c_.display_period_s, c_.display_latency_s);
+    ic.protected_frame = false;
+    ic.length = 6;
+    ic.signals.push_back(make(Source::kDisplaySpeed, "DisplaySpeed", 0, 16, false,
+                              rng_.chance(0.5) ? 1.0 : 0.5, 0.0, "km/h", 1.0 / 3.6,
+                              s_.speed == SpeedSignal::kDisplay ? "speed" : ""));
+    ic.signals.push_back(make(Source::kOdometer, "Odometer", 2, 32, false, 0.1, 0.0, "km", 1000.0));
+    return ic;
+  }
 
   // Other ECUs: the bus is never only what the estimator reads.
-  const char* others[] = {"ECM_Temperatures", "HVAC_Status", "BCM_Doors", "TCU_Status"};
-  const int n_other = 2 + rng.index(3);
-  for (int i = 0; i < n_other; ++i) {
-    Message o = message("other", others[i], 0.02 * (1 + rng.index(10)), 0.0);
-    o.signals.push_back(
-        make(Source::kFiller, std::string(others[i]) + "_A", 0, 16, false, 0.1, -40.0, "", 1.0));
-    o.signals.push_back(
-        make(Source::kFiller, std::string(others[i]) + "_B", 2, 8, false, 1.0, 0.0, "", 1.0));
-    messages_.push_back(o);
+  void others(std::vector<Message>& out) {
+    const char* names[] = {"ECM_Temperatures", "HVAC_Status", "BCM_Doors", "TCU_Status"};
+    const int n = 2 + rng_.index(3);
+    for (int i = 0; i < n; ++i) {
+      Message o = message("other", names[i], 0.02 * (1 + rng_.index(10)), 0.0);
+      o.signals.push_back(
+          make(Source::kFiller, std::string(names[i]) + "_A", 0, 16, false, 0.1, -40.0, "", 1.0));
+      o.signals.push_back(
+          make(Source::kFiller, std::string(names[i]) + "_B", 2, 8, false, 1.0, 0.0, "", 1.0));
+      out.push_back(o);
+    }
   }
-}
+
+  const CanConventions& c_;
+  const VehicleSensors& s_;
+  bool truck_;
+  RandomStream rng_;
+  std::uint32_t next_id_;
+};
+
+}  // namespace
+
+void VehicleBus::build_messages() { messages_ = MessageLayout(vehicle_).build(); }
 
 namespace {
 
@@ -387,127 +420,165 @@ const BusFault* active_fault(const std::vector<BusFault>& faults, const std::str
 
 }  // namespace
 
-std::string VehicleBus::encode(const SimulationResult& result, const BusOptions& options,
-                               std::vector<can::CanFrame>* frames) const {
-  if (!error_.empty()) return vehicle_.id + ": " + error_;
-  if (result.ecu_trace.empty()) return "encode: the simulation kept no ECU trace";
-  const can::Decoder& decoder = decoder_.front();
-  const TrueVehicle& tv = result.vehicle;
-  const bool timing = options.realism.has(Effect::kBusTiming);
-  const bool noise = options.realism.has(Effect::kSensorNoise);
-  const double end_s = static_cast<double>(result.ecu_trace.size() - 1) / result.ecu_trace_rate_hz;
-  NoiseStreams rng(options.seed);
-  frames->clear();
-  std::vector<double> values(static_cast<std::size_t>(decoder.max_signals_per_message()));
+namespace {
 
-  for (std::size_t mi = 0; mi < messages_.size(); ++mi) {
-    const Message& m = messages_[mi];
-    const int index = decoder.find_message(m.name);
+// Encodes the frames of one drive (VehicleBus::encode): one message at a time.
+class FrameEncoder {
+ public:
+  FrameEncoder(const can::Decoder& decoder, const SimulationResult& result,
+               const BusOptions& options)
+      : decoder_(decoder),
+        result_(result),
+        options_(options),
+        timing_(options.realism.has(Effect::kBusTiming)),
+        noise_(options.realism.has(Effect::kSensorNoise)),
+        end_s_(static_cast<double>(result.ecu_trace.size() - 1) / result.ecu_trace_rate_hz),
+        rng_(options.seed),
+        values_(static_cast<std::size_t>(decoder.max_signals_per_message())) {}
+
+  /// Every frame of message m (the mi-th on the bus). "" or a message.
+  std::string encode_message(const Message& m, std::size_t mi, std::vector<can::CanFrame>* out) {
+    const int index = decoder_.find_message(m.name);
     if (index < 0) return "encode: no message " + m.name + " in the generated DBC";
-    const double period =
-        timing ? m.period_s : (m.logical == "cluster" || m.logical == "other" ? m.period_s : 0.01);
-    const double phase = timing ? m.phase_s : 0.0;
-    const double latency = timing ? m.latency_s : 0.0;
+    const bool slow = m.logical == "cluster" || m.logical == "other";
+    const double period = timing_ || slow ? m.period_s : 0.01;
+    const double phase = timing_ ? m.phase_s : 0.0;
+    const double latency = timing_ ? m.latency_s : 0.0;
     const auto tx_us = static_cast<TimeUs>(150 * (mi + 1));  // arbitration order on the bus
     int page = 0;
     for (long j = 0;; ++j) {
       const double t = phase + static_cast<double>(j) * period;
-      if (t > end_s) break;
-      if (active_fault(options.faults, m.logical, BusFault::Kind::kMissing, t)) continue;
+      if (t > end_s_) break;
+      if (fault(m.logical, BusFault::Kind::kMissing, t) != nullptr) continue;
       double t_value = t - latency;
-      if (const BusFault* f = active_fault(options.faults, m.logical, BusFault::Kind::kFrozen, t)) {
+      if (const BusFault* f = fault(m.logical, BusFault::Kind::kFrozen, t)) {
         t_value = f->start_s - latency;
       }
-      const EcuSignals& e = trace_at(result, std::max(0.0, t_value));
-      const double odo = odometer_at(result, std::max(0.0, t_value));
-      const bool absurd =
-          active_fault(options.faults, m.logical, BusFault::Kind::kAbsurd, t) &&
-          active_fault(options.faults, m.logical, BusFault::Kind::kAbsurd, t - period) == nullptr;
-      std::fill(values.begin(), values.end(), 0.0);
-      const can::Message& def = decoder.database().messages[static_cast<std::size_t>(index)];
-      for (const Signal& s : m.signals) {
-        const int si = def.find_signal(s.name);
-        if (si < 0) continue;
-        if (s.is_switch) {
-          values[static_cast<std::size_t>(si)] = page;
-          continue;
-        }
-        if (s.mux >= 0 && s.mux != page) continue;
-        double v = si_value(s.source, e, odo);
-        switch (s.source) {
-          case Source::kWheelTorque:
-          case Source::kWheelTorqueFront:
-          case Source::kWheelTorqueRear: {
-            const double share = s.source == Source::kWheelTorque ? 1.0 : 0.5;
-            v = v * options.torque_report_scale +
-                share * eps_force_n(options.eps, rng.eps) * tv.wheel_radius_m;
-            break;
-          }
-          case Source::kEngineTorque: {
-            const PowertrainParams& p = tv.powertrain;
-            const int g = std::clamp(e.gear, 1, p.gear_count());
-            const double ratio =
-                p.gear_ratios[static_cast<std::size_t>(g - 1)] * p.final_drive_ratio * p.efficiency;
-            v = v * options.torque_report_scale +
-                eps_force_n(options.eps, rng.eps) * tv.wheel_radius_m / ratio;
-            break;
-          }
-          case Source::kAccelX:
-          case Source::kAccelY:
-            if (noise) v += tv.imu.noise_std_mps2 * rng.accel.normal();
-            break;
-          case Source::kYawRate:
-            if (noise) v += tv.imu.gyro_noise_std_radps * rng.gyro.normal();
-            break;
-          case Source::kSpeed:
-            if (noise && v > 0.0) v = std::max(0.0, v + 0.02 * rng.other.normal());
-            break;
-          case Source::kBrakePressure:
-            if (noise) v = std::max(0.0, v + 3000.0 * rng.other.normal());
-            break;
-          case Source::kSteering:
-            if (noise) v += 0.1 * kDeg * rng.other.normal();
-            break;
-          case Source::kLevelRearRight:
-            if (noise) v += 1.5e-4 * rng.other.normal();
-            break;
-          case Source::kFiller:
-            v = rng.filler.uniform(0.0, 100.0);
-            break;
-          default:
-            break;
-        }
-        double physical = s.sign * v / s.si_per_unit;
-        if (absurd && !s.is_switch && s.source != Source::kGear) physical = s.maximum;
-        values[static_cast<std::size_t>(si)] = physical;
-      }
-      can::CanFrame f;
-      decoder.encode(index, values.data(), &f);
+      const bool absurd = fault(m.logical, BusFault::Kind::kAbsurd, t) != nullptr &&
+                          fault(m.logical, BusFault::Kind::kAbsurd, t - period) == nullptr;
+      can::CanFrame f = frame(m, index, std::max(0.0, t_value), page, absurd);
       f.time_us = from_seconds(t) + tx_us;
-      if (m.protected_frame) {
-        f.data[7] = static_cast<std::uint8_t>((f.data[7] & 0xF0u) | (j & 0x0F));
-        std::uint8_t x = static_cast<std::uint8_t>(m.id & 0xFFu);
-        for (int b = 0; b < 6; ++b) x ^= f.data[b];
-        f.data[6] = x;
-      }
-      if (active_fault(options.faults, m.logical, BusFault::Kind::kMalformedBurst, t)) f.len = 2;
-      frames->push_back(f);
+      if (m.protected_frame) protect(m, j, &f);
+      if (fault(m.logical, BusFault::Kind::kMalformedBurst, t) != nullptr) f.len = 2;
+      out->push_back(f);
       if (!m.signals.empty() && m.signals.front().is_switch) page = 1 - page;
     }
+    return "";
   }
-  // Bursts of frames the DBC does not know.
-  for (const BusFault& fault : options.faults) {
-    if (fault.kind != BusFault::Kind::kUnknownBurst) continue;
-    const int count = static_cast<int>(fault.duration_s * 2000.0);
-    for (int i = 0; i < count; ++i) {
-      can::CanFrame f;
-      f.id = 0x700u + static_cast<std::uint32_t>(rng.filler.index(0xF0));
-      f.len = static_cast<std::uint8_t>(1 + rng.filler.index(8));
-      for (int b = 0; b < f.len; ++b) f.data[b] = static_cast<std::uint8_t>(rng.filler.index(256));
-      f.time_us = from_seconds(fault.start_s + static_cast<double>(i) / 2000.0) + 77;
-      frames->push_back(f);
+
+  /// Frames with identifiers the DBC does not know, for each unknown-burst fault.
+  void unknown_bursts(std::vector<can::CanFrame>* out) {
+    for (const BusFault& fault : options_.faults) {
+      if (fault.kind != BusFault::Kind::kUnknownBurst) continue;
+      const int count = static_cast<int>(fault.duration_s * 2000.0);
+      for (int i = 0; i < count; ++i) {
+        can::CanFrame f;
+        f.id = 0x700u + static_cast<std::uint32_t>(rng_.filler.index(0xF0));
+        f.len = static_cast<std::uint8_t>(1 + rng_.filler.index(8));
+        for (int b = 0; b < f.len; ++b)
+          f.data[b] = static_cast<std::uint8_t>(rng_.filler.index(256));
+        f.time_us = from_seconds(fault.start_s + static_cast<double>(i) / 2000.0) + 77;
+        out->push_back(f);
+      }
     }
   }
+
+ private:
+  const BusFault* fault(const std::string& logical, BusFault::Kind kind, double t) const {
+    return active_fault(options_.faults, logical, kind, t);
+  }
+
+  can::CanFrame frame(const Message& m, int index, double t_value, int page, bool absurd) {
+    const EcuSignals& e = trace_at(result_, t_value);
+    const double odo = odometer_at(result_, t_value);
+    std::fill(values_.begin(), values_.end(), 0.0);
+    const can::Message& def = decoder_.database().messages[static_cast<std::size_t>(index)];
+    for (const Signal& s : m.signals) {
+      const int si = def.find_signal(s.name);
+      if (si < 0) continue;
+      double physical = page;
+      if (!s.is_switch) {
+        if (s.mux >= 0 && s.mux != page) continue;
+        physical = s.sign * transmitted(s, e, odo) / s.si_per_unit;
+        if (absurd && s.source != Source::kGear) physical = s.maximum;
+      }
+      values_[static_cast<std::size_t>(si)] = physical;
+    }
+    can::CanFrame f;
+    decoder_.encode(index, values_.data(), &f);
+    return f;
+  }
+
+  // The value an ECU transmits: the signal with the torque's scale error and eps noise, or the
+  // sensor's white noise.
+  double transmitted(const Signal& s, const EcuSignals& e, double odometer_m) {
+    const TrueVehicle& tv = result_.vehicle;
+    const double v = si_value(s.source, e, odometer_m);
+    switch (s.source) {
+      case Source::kWheelTorque:
+      case Source::kWheelTorqueFront:
+      case Source::kWheelTorqueRear: {
+        const double share = s.source == Source::kWheelTorque ? 1.0 : 0.5;
+        return v * options_.torque_report_scale +
+               share * eps_force_n(options_.eps, rng_.eps) * tv.wheel_radius_m;
+      }
+      case Source::kEngineTorque: {
+        const PowertrainParams& p = tv.powertrain;
+        const int g = std::clamp(e.gear, 1, p.gear_count());
+        const double ratio =
+            p.gear_ratios[static_cast<std::size_t>(g - 1)] * p.final_drive_ratio * p.efficiency;
+        return v * options_.torque_report_scale +
+               eps_force_n(options_.eps, rng_.eps) * tv.wheel_radius_m / ratio;
+      }
+      case Source::kAccelX:
+      case Source::kAccelY:
+        return noise_ ? v + tv.imu.noise_std_mps2 * rng_.accel.normal() : v;
+      case Source::kYawRate:
+        return noise_ ? v + tv.imu.gyro_noise_std_radps * rng_.gyro.normal() : v;
+      case Source::kSpeed:
+        return noise_ && v > 0.0 ? std::max(0.0, v + 0.02 * rng_.other.normal()) : v;
+      case Source::kBrakePressure:
+        return noise_ ? std::max(0.0, v + 3000.0 * rng_.other.normal()) : v;
+      case Source::kSteering:
+        return noise_ ? v + 0.1 * kDeg * rng_.other.normal() : v;
+      case Source::kLevelRearRight:
+        return noise_ ? v + 1.5e-4 * rng_.other.normal() : v;
+      case Source::kFiller:
+        return rng_.filler.uniform(0.0, 100.0);
+      default:
+        return v;
+    }
+  }
+
+  // A 4-bit rolling counter in byte 7's low nibble, an XOR of the id and bytes 0..5 in byte 6.
+  static void protect(const Message& m, long j, can::CanFrame* f) {
+    f->data[7] = static_cast<std::uint8_t>((f->data[7] & 0xF0u) | (j & 0x0F));
+    auto x = static_cast<std::uint8_t>(m.id & 0xFFu);
+    for (int b = 0; b < 6; ++b) x ^= f->data[b];
+    f->data[6] = x;
+  }
+
+  const can::Decoder& decoder_;
+  const SimulationResult& result_;
+  const BusOptions& options_;
+  bool timing_, noise_;
+  double end_s_;
+  NoiseStreams rng_;
+  std::vector<double> values_;
+};
+
+}  // namespace
+
+std::string VehicleBus::encode(const SimulationResult& result, const BusOptions& options,
+                               std::vector<can::CanFrame>* frames) const {
+  if (!error_.empty()) return vehicle_.id + ": " + error_;
+  if (result.ecu_trace.empty()) return "encode: the simulation kept no ECU trace";
+  FrameEncoder encoder(decoder_.front(), result, options);
+  frames->clear();
+  for (std::size_t mi = 0; mi < messages_.size(); ++mi) {
+    if (auto m = encoder.encode_message(messages_[mi], mi, frames); !m.empty()) return m;
+  }
+  encoder.unknown_bursts(frames);
   std::stable_sort(
       frames->begin(), frames->end(),
       [](const can::CanFrame& a, const can::CanFrame& b) { return a.time_us < b.time_us; });

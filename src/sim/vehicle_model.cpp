@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "vmass/sim/suspension.hpp"
 #include "vmass/sim/tyre.hpp"
@@ -150,20 +151,72 @@ AxleForces longitudinal_forces(const TrueVehicle& p, const Road& road, const Vec
   return f;
 }
 
-Vec derivatives(const TrueVehicle& p, const Road& road, Realism fx, const Vec& x, bool stopped,
-                const VehicleInputs& in, VehicleOutputs* out) {
+// The planar motion of a moving car (see the header's equations): fills d's motion states and
+// o's forces, returns the specific forces (f_x, f_y).
+std::pair<double, double> moving_derivatives(const TrueVehicle& p, const Road& road, Realism fx,
+                                             const Vec& x, const VehicleInputs& in, const Loads& w,
+                                             Vec& d, VehicleOutputs& o) {
   const MassProperties& m = in.mass;
   const double g = p.gravity_mps2;
   const double M = m.mass_kg;
   const double lf = m.cg_x_m;
   const double lr = p.wheelbase_m - lf;
+  const double vx = x[kVx];
+  const double vy = x[kVy];
+  const double r = x[kR];
+  const double delta = in.road_wheel_angle_rad;
+  const double fyf = wheel_lateral_force(p.front_tyre, x[kSlipF], w.fl) +
+                     wheel_lateral_force(p.front_tyre, x[kSlipF], w.fr);
+  const double fyr = wheel_lateral_force(p.rear_tyre, x[kSlipR], w.rl) +
+                     wheel_lateral_force(p.rear_tyre, x[kSlipR], w.rr);
+  const AxleForces axle = longitudinal_forces(p, road, x, in, w, fx, &o);
+  const bool wind = fx.has(Effect::kWind);
+  const double v_air = vx + (wind ? in.wind_head_mps : 0.0);
+  const double drag = 0.5 * p.air_density_kg_per_m3 * p.drag_area_m2 * v_air * std::abs(v_air);
+  const double side = wind ? 0.5 * p.air_density_kg_per_m3 * p.side_force_area_m2 *
+                                 in.wind_cross_mps * std::abs(in.wind_cross_mps)
+                           : 0.0;
+  const double cd = std::cos(delta);
+  const double sd = std::sin(delta);
+  const double force_x =
+      axle.front * cd - fyf * sd + axle.rear - drag - M * g * std::sin(o.grade_rad);
+  const double force_y = axle.front * sd + fyf * cd + fyr + side -
+                         M * g * std::cos(o.grade_rad) * std::sin(o.bank_rad);
+  const double moment_z = lf * (axle.front * sd + fyf * cd) - lr * fyr;
+
+  d[kVx] = (force_x + M * r * vy) / (M + in.rotating_mass_kg);
+  d[kVy] = force_y / M - r * vx;
+  d[kR] = moment_z / m.yaw_inertia_kgm2;
+  d[kX] = vx * std::cos(x[kYaw]) - vy * std::sin(x[kYaw]);
+  d[kY] = vx * std::sin(x[kYaw]) + vy * std::cos(x[kYaw]);
+  d[kYaw] = r;
+  d[kDist] = std::hypot(vx, vy);
+  const double v_eff = std::max(vx, kSlipMinSpeedMps);
+  d[kSlipF] = v_eff / p.front_tyre.relaxation_length_m *
+              (std::atan2(vy + lf * r, v_eff) - delta - x[kSlipF]);
+  d[kSlipR] =
+      v_eff / p.rear_tyre.relaxation_length_m * (std::atan2(vy - lr * r, v_eff) - x[kSlipR]);
+
+  o.dvx_dt_mps2 = d[kVx];
+  o.dvy_dt_mps2 = d[kVy];
+  o.yaw_accel_radps2 = d[kR];
+  o.drag_force_n = drag;
+  o.side_wind_force_n = side;
+  o.lateral_force_front_n = fyf;
+  o.lateral_force_rear_n = fyr;
+  return {d[kVx] - r * vy + g * std::sin(o.grade_rad),
+          d[kVy] + r * vx + g * std::cos(o.grade_rad) * std::sin(o.bank_rad)};
+}
+
+Vec derivatives(const TrueVehicle& p, const Road& road, Realism fx, const Vec& x, bool stopped,
+                const VehicleInputs& in, VehicleOutputs* out) {
+  const MassProperties& m = in.mass;
+  const double g = p.gravity_mps2;
   const double theta = road.grade_at(x[kDist]);
   const double phi = road.bank_at(x[kDist]);
   const Loads w = wheel_loads(p, m, theta, x[kLoadAx], x[kLoadAy]);
 
   Vec d{};
-  double f_x = 0.0;
-  double f_y = 0.0;
   VehicleOutputs o;
   o.grade_rad = theta;
   o.bank_rad = phi;
@@ -171,57 +224,9 @@ Vec derivatives(const TrueVehicle& p, const Road& road, Realism fx, const Vec& x
   o.front_axle_load_n = w.front_axle;
   o.rear_axle_load_n = w.rear_axle;
   o.rear_right_load_n = w.rr;
-  if (stopped) {
-    f_x = g * std::sin(theta);
-    f_y = g * std::cos(theta) * std::sin(phi);
-  } else {
-    const double vx = x[kVx];
-    const double vy = x[kVy];
-    const double r = x[kR];
-    const double delta = in.road_wheel_angle_rad;
-    const double fyf = wheel_lateral_force(p.front_tyre, x[kSlipF], w.fl) +
-                       wheel_lateral_force(p.front_tyre, x[kSlipF], w.fr);
-    const double fyr = wheel_lateral_force(p.rear_tyre, x[kSlipR], w.rl) +
-                       wheel_lateral_force(p.rear_tyre, x[kSlipR], w.rr);
-    const AxleForces axle = longitudinal_forces(p, road, x, in, w, fx, &o);
-    const bool wind = fx.has(Effect::kWind);
-    const double v_air = vx + (wind ? in.wind_head_mps : 0.0);
-    const double drag = 0.5 * p.air_density_kg_per_m3 * p.drag_area_m2 * v_air * std::abs(v_air);
-    const double side = wind ? 0.5 * p.air_density_kg_per_m3 * p.side_force_area_m2 *
-                                   in.wind_cross_mps * std::abs(in.wind_cross_mps)
-                             : 0.0;
-    const double cd = std::cos(delta);
-    const double sd = std::sin(delta);
-    const double force_x = axle.front * cd - fyf * sd + axle.rear - drag - M * g * std::sin(theta);
-    const double force_y =
-        axle.front * sd + fyf * cd + fyr + side - M * g * std::cos(theta) * std::sin(phi);
-    const double moment_z = lf * (axle.front * sd + fyf * cd) - lr * fyr;
-
-    d[kVx] = (force_x + M * r * vy) / (M + in.rotating_mass_kg);
-    d[kVy] = force_y / M - r * vx;
-    d[kR] = moment_z / m.yaw_inertia_kgm2;
-    const double c = std::cos(x[kYaw]);
-    const double s = std::sin(x[kYaw]);
-    d[kX] = vx * c - vy * s;
-    d[kY] = vx * s + vy * c;
-    d[kYaw] = r;
-    d[kDist] = std::hypot(vx, vy);
-    const double v_eff = std::max(vx, kSlipMinSpeedMps);
-    const double slip_f_ss = std::atan2(vy + lf * r, v_eff) - delta;
-    const double slip_r_ss = std::atan2(vy - lr * r, v_eff);
-    d[kSlipF] = v_eff / p.front_tyre.relaxation_length_m * (slip_f_ss - x[kSlipF]);
-    d[kSlipR] = v_eff / p.rear_tyre.relaxation_length_m * (slip_r_ss - x[kSlipR]);
-    f_x = d[kVx] - r * vy + g * std::sin(theta);
-    f_y = d[kVy] + r * vx + g * std::cos(theta) * std::sin(phi);
-
-    o.dvx_dt_mps2 = d[kVx];
-    o.dvy_dt_mps2 = d[kVy];
-    o.yaw_accel_radps2 = d[kR];
-    o.drag_force_n = drag;
-    o.side_wind_force_n = side;
-    o.lateral_force_front_n = fyf;
-    o.lateral_force_rear_n = fyr;
-  }
+  const auto [f_x, f_y] = stopped
+                              ? std::pair{g * std::sin(theta), g * std::cos(theta) * std::sin(phi)}
+                              : moving_derivatives(p, road, fx, x, in, w, d, o);
   const double tau = p.load_transfer_time_constant_s;
   d[kLoadAx] = (f_x - x[kLoadAx]) / tau;
   d[kLoadAy] = (f_y - x[kLoadAy]) / tau;

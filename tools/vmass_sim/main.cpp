@@ -102,33 +102,101 @@ int run_population(const PopulationArgs& a) {
   return 0;
 }
 
-}  // namespace
-
-// NOLINTNEXTLINE(readability-function-size): the simulator's CLI grows with issue 8 on main
-int main(int argc, char** argv) {
-  CLI::App app{
-      "vmass-sim: simulate a vehicle scenario; writes samples.csv, truth.csv, config.yaml, "
-      "drive.log, vehicle.dbc"};
+// Everything the command line sets.
+struct Args {
   bool list = false;
   std::string scenario_name;
   std::uint64_t seed = 1;
   std::string noise_name;
   std::string out_dir;
   bool ideal = false;
-  app.add_flag("--list", list, "list the scenarios and exit");
-  app.add_option("--scenario", scenario_name, "scenario name (see --list)");
-  app.add_option("--seed", seed, "seed of the sensor noise (default 1)");
-  app.add_option("--noise", noise_name, "wheel-force noise set: none, eps1 (default), eps2, eps3");
-  app.add_flag("--ideal-sensors", ideal, "no sensor noise, bias or quantisation (debugging)");
-  app.add_option("--out", out_dir, "output directory (created if missing)");
   PopulationArgs pop;
   int list_vehicles = 0;
   std::uint64_t first_seed = vmass::sim::kDevelopmentFirstSeed;
-  app.add_option("--vehicle", pop.vehicle_id, "population vehicle CLASS-SEED (e.g. suv-7)");
-  app.add_option("--realism", pop.realism, "effects: all (default), none, all-EFFECT, A+B");
-  app.add_option("--knowledge", pop.knowledge, "known_scale (default) or datasheet_scale");
-  app.add_option("--list-vehicles", list_vehicles, "list the first N population vehicles");
-  app.add_option("--first-seed", first_seed, "seed of the first vehicle of --list-vehicles");
+};
+
+void add_options(CLI::App& app, Args& a) {
+  app.add_flag("--list", a.list, "list the scenarios and exit");
+  app.add_option("--scenario", a.scenario_name, "scenario name (see --list)");
+  app.add_option("--seed", a.seed, "seed of the sensor noise (default 1)");
+  app.add_option("--noise", a.noise_name,
+                 "wheel-force noise set: none, eps1 (default), eps2, eps3");
+  app.add_flag("--ideal-sensors", a.ideal, "no sensor noise, bias or quantisation (debugging)");
+  app.add_option("--out", a.out_dir, "output directory (created if missing)");
+  app.add_option("--vehicle", a.pop.vehicle_id, "population vehicle CLASS-SEED (e.g. suv-7)");
+  app.add_option("--realism", a.pop.realism, "effects: all (default), none, all-EFFECT, A+B");
+  app.add_option("--knowledge", a.pop.knowledge, "known_scale (default) or datasheet_scale");
+  app.add_option("--list-vehicles", a.list_vehicles, "list the first N population vehicles");
+  app.add_option("--first-seed", a.first_seed, "seed of the first vehicle of --list-vehicles");
+}
+
+int list_scenarios() {
+  for (const std::string& n : vmass::sim::scenario_names()) {
+    const auto s = vmass::sim::find_scenario(n);
+    std::cout << n << "  " << s->description << '\n';
+  }
+  std::cout << "\npopulation scenarios (with --vehicle CLASS-SEED):\n";
+  for (const std::string& n : vmass::sim::population_scenario_names()) {
+    std::cout << n << "  " << vmass::sim::population_scenario_description(n) << '\n';
+  }
+  return 0;
+}
+
+int list_vehicles(int count, std::uint64_t first_seed) {
+  for (const auto& v : vmass::sim::draw_population(count, first_seed)) {
+    std::cout << vmass::sim::describe_vehicle(v) << '\n';
+  }
+  return 0;
+}
+
+// A named demo scenario: the demo car, its CSV files, config, DBC and log.
+int run_demo_scenario(const Args& a) {
+  if (a.scenario_name.empty())
+    return fail("--scenario NAME is required (one of: " + joined_names() + ")");
+  if (a.out_dir.empty()) return fail("--out DIR is required");
+  const auto scenario = vmass::sim::find_scenario(a.scenario_name);
+  if (!scenario) {
+    return fail("unknown scenario '" + a.scenario_name + "' (known: " + joined_names() + ")");
+  }
+  vmass::sim::SimulationOptions options;
+  options.seed = a.seed;
+  options.ideal_sensors = a.ideal;
+  if (!a.noise_name.empty()) {
+    options.noise = vmass::sim::parse_noise_set(a.noise_name);
+    if (!options.noise) {
+      return fail("unknown noise set '" + a.noise_name + "' (known: none, eps1, eps2, eps3)");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(a.out_dir, ec);
+  if (ec) return fail("cannot create output directory " + a.out_dir + ": " + ec.message());
+  if (!std::filesystem::is_directory(a.out_dir, ec)) {
+    return fail("output path " + a.out_dir + " is not a directory");
+  }
+  vmass::sim::SimulationResult result;
+  if (auto m = vmass::sim::simulate(*scenario, options, &result); !m.empty()) return fail(m);
+  if (auto m = vmass::sim::write_csv_files(result, a.out_dir); !m.empty()) return fail(m);
+  if (auto m = vmass::sim::write_config_file(result, a.out_dir); !m.empty()) return fail(m);
+  if (auto m = vmass::sim::write_can_files(result, a.out_dir); !m.empty()) return fail(m);
+  if (result.scenario == "static_ballast") {  // + ballast.csv, suspension_truth.yaml
+    if (auto m = vmass::sim::write_ballast_files(result, a.out_dir); !m.empty()) return fail(m);
+  }
+  std::cout << "vmass-sim: " << result.scenario << ", seed " << result.seed << ", noise "
+            << vmass::sim::noise_set_name(result.noise) << ": " << result.samples.size()
+            << " samples at " << result.tick_rate_hz << " Hz, mass " << result.truth.front().mass_kg
+            << " -> " << result.truth.back().mass_kg << " kg; wrote " << a.out_dir
+            << "/{samples.csv,truth.csv,config.yaml,drive.log,vehicle.dbc}\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "vmass-sim: simulate a vehicle scenario; writes samples.csv, truth.csv, config.yaml, "
+      "drive.log, vehicle.dbc"};
+  Args a;
+  add_options(app, a);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -137,71 +205,15 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitError;
   }
-
-  if (list) {
-    for (const std::string& n : vmass::sim::scenario_names()) {
-      const auto s = vmass::sim::find_scenario(n);
-      std::cout << n << "  " << s->description << '\n';
-    }
-    std::cout << "\npopulation scenarios (with --vehicle CLASS-SEED):\n";
-    for (const std::string& n : vmass::sim::population_scenario_names()) {
-      std::cout << n << "  " << vmass::sim::population_scenario_description(n) << '\n';
-    }
-    return 0;
+  if (a.list) return list_scenarios();
+  if (a.list_vehicles > 0) return list_vehicles(a.list_vehicles, a.first_seed);
+  if (a.pop.vehicle_id.empty()) return run_demo_scenario(a);
+  if (a.scenario_name.empty()) {
+    return fail("--scenario NAME is required (one of: " + joined_population_names() + ")");
   }
-  if (list_vehicles > 0) {
-    for (const auto& v : vmass::sim::draw_population(list_vehicles, first_seed)) {
-      std::cout << vmass::sim::describe_vehicle(v) << '\n';
-    }
-    return 0;
-  }
-  if (!pop.vehicle_id.empty()) {
-    if (scenario_name.empty()) {
-      return fail("--scenario NAME is required (one of: " + joined_population_names() + ")");
-    }
-    if (out_dir.empty()) return fail("--out DIR is required");
-    pop.scenario = scenario_name;
-    pop.seed = seed;
-    pop.out_dir = out_dir;
-    return run_population(pop);
-  }
-  if (scenario_name.empty())
-    return fail("--scenario NAME is required (one of: " + joined_names() + ")");
-  if (out_dir.empty()) return fail("--out DIR is required");
-  const auto scenario = vmass::sim::find_scenario(scenario_name);
-  if (!scenario) {
-    return fail("unknown scenario '" + scenario_name + "' (known: " + joined_names() + ")");
-  }
-  vmass::sim::SimulationOptions options;
-  options.seed = seed;
-  options.ideal_sensors = ideal;
-  if (!noise_name.empty()) {
-    options.noise = vmass::sim::parse_noise_set(noise_name);
-    if (!options.noise) {
-      return fail("unknown noise set '" + noise_name + "' (known: none, eps1, eps2, eps3)");
-    }
-  }
-
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec) return fail("cannot create output directory " + out_dir + ": " + ec.message());
-  if (!std::filesystem::is_directory(out_dir, ec)) {
-    return fail("output path " + out_dir + " is not a directory");
-  }
-
-  vmass::sim::SimulationResult result;
-  if (auto m = vmass::sim::simulate(*scenario, options, &result); !m.empty()) return fail(m);
-  if (auto m = vmass::sim::write_csv_files(result, out_dir); !m.empty()) return fail(m);
-  if (auto m = vmass::sim::write_config_file(result, out_dir); !m.empty()) return fail(m);
-  if (auto m = vmass::sim::write_can_files(result, out_dir); !m.empty()) return fail(m);
-  if (result.scenario == "static_ballast") {  // + ballast.csv, suspension_truth.yaml
-    if (auto m = vmass::sim::write_ballast_files(result, out_dir); !m.empty()) return fail(m);
-  }
-
-  std::cout << "vmass-sim: " << result.scenario << ", seed " << result.seed << ", noise "
-            << vmass::sim::noise_set_name(result.noise) << ": " << result.samples.size()
-            << " samples at " << result.tick_rate_hz << " Hz, mass " << result.truth.front().mass_kg
-            << " -> " << result.truth.back().mass_kg << " kg; wrote " << out_dir
-            << "/{samples.csv,truth.csv,config.yaml,drive.log,vehicle.dbc}\n";
-  return 0;
+  if (a.out_dir.empty()) return fail("--out DIR is required");
+  a.pop.scenario = a.scenario_name;
+  a.pop.seed = a.seed;
+  a.pop.out_dir = a.out_dir;
+  return run_population(a.pop);
 }

@@ -244,6 +244,7 @@ def plot_series(series_dir, plots_dir, out):
     for run, ests in sorted(runs.items()):
         fig, axes = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
         truth_done = False
+        truth_range = [math.inf, -math.inf]
         for est, path in sorted(ests.items(), key=lambda kv: ESTIMATOR_ORDER.index(kv[0])
                                 if kv[0] in ESTIMATOR_ORDER else 99):
             t, truth, m, lo, hi = [], [], [], [], []
@@ -263,6 +264,7 @@ def plot_series(series_dir, plots_dir, out):
             if not truth_done:
                 axes[0].plot(t, truth, "k-", lw=2, label="truth")
                 truth_done = True
+                truth_range = [min(truth), max(truth)]
             line, = axes[0].plot(t, m, lw=1, label=est)
             if est in ("bayes", "rls"):
                 axes[0].fill_between(t, lo, hi, color=line.get_color(), alpha=0.15)
@@ -270,6 +272,9 @@ def plot_series(series_dir, plots_dir, out):
                          color=line.get_color(), label=est)
         for band in (1, 2, 5):
             axes[1].axhspan(-band, band, color="green", alpha=0.06)
+        if math.isfinite(truth_range[0]):
+            # Scaled to the truth: an estimate far off leaves the plot, its error panel says how far.
+            axes[0].set_ylim(0.6 * truth_range[0], 1.4 * truth_range[1])
         axes[0].set_ylabel("mass, kg")
         axes[1].set_ylabel("error, %")
         axes[1].set_xlabel("time, s")

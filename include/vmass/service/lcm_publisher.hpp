@@ -12,6 +12,8 @@
 // lcm::LCM instance, but the message objects and buffer here are not shared-safe).
 #pragma once
 
+#include <array>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,6 +41,22 @@ enum class DaemonState : std::uint8_t {
 std::string_view daemon_state_name(DaemonState s);
 
 /// Everything status_t reports, gathered by the publisher thread.
+/// The layout of vmass_mass_estimate_t and vmass_status_t (their schema_version field).
+constexpr std::int32_t kLcmSchemaVersion = 2;
+
+/// Health counters of one estimator input (status_t's per-input arrays).
+struct InputHealth {
+  std::int64_t stale = 0, invalid = 0, implausible = 0, counter_fail = 0, checksum_fail = 0;
+  std::string reason;  ///< why it is invalid now, "" when valid
+};
+
+/// Health of one mapped CAN message (status_t's per-message arrays).
+struct MessageHealth {
+  std::string name;
+  bool valid = true;
+  std::int64_t counter_fail = 0, checksum_fail = 0, too_fast = 0, too_long = 0;
+};
+
 struct DaemonStatus {
   DaemonState state = DaemonState::kStarting;
   std::string source;
@@ -51,8 +69,17 @@ struct DaemonStatus {
                frames_dropped = 0, bus_errors = 0, source_reopens = 0;
   TickTimingSummary timing;
   std::int64_t publish_queue_drops = 0;
+  std::int64_t publish_failures = 0;
   std::int64_t state_saves = 0;
   bool state_restored = false;
+  // Schema 2.
+  double driveline_lag_s = -1.0;       ///< -1: not identified
+  double accel_noise_std_mps2 = -1.0;  ///< -1: not measured yet
+  double force_noise_std_n = -1.0;
+  std::array<InputHealth, kInputCount> inputs{};
+  std::vector<MessageHealth> messages;
+  bool bus_valid = true;
+  std::int64_t frames_reordered = 0, frames_late_dropped = 0, time_jumps = 0;
 };
 
 /// Reads a source's counters into *status.
