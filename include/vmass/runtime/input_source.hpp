@@ -1,8 +1,9 @@
 // InputSource: where the daemon's estimator inputs come from, split between the two threads
 // that touch it:
 //
-//   reading thread    read() fetches the next record and says when it describes (input clock:
-//                     log time for recordings, the tick clock for a live bus); fetch() copies it
+//   reading thread    next_record() reads the next record and says when it describes (input
+//                     clock: log time for recordings, the tick clock for a live bus);
+//                     copy_record() copies it
 //                     into an InputRecord, which goes to the estimator thread through an SPSC
 //                     queue (the split lets the daemon pace a recording by its log time)
 //   estimator thread  apply() folds records into the source's input table; at each tick
@@ -26,7 +27,7 @@
 // decoded by a signals::SignalTable, see can_input_source.hpp).
 //
 // Counters are atomics (each written by one thread, or added to by both) read by the status
-// publisher. Thread-safety: read()/record_time_us()/fetch() from one reading thread;
+// publisher. Thread-safety: next_record()/record_time_us()/copy_record() from one reading thread;
 // apply()/sample_at()/input_age_us()/input_report() from one estimator thread; counters(),
 // health(), recorded() and describe() from any thread.
 #pragma once
@@ -98,21 +99,22 @@ struct SourceHealth {
 class InputSource {
  public:
   enum class Read : std::uint8_t {
-    kRecord,   ///< a record is ready: record_time_us(), then fetch()
+    kRecord,   ///< a record is ready: record_time_us(), then copy_record()
     kTimeout,  ///< nothing within the timeout (live sources)
-    kDown,     ///< the input is lost for now (interface down/gone); call read() again
+    kDown,     ///< the input is lost for now (interface down/gone); call next_record() again
     kEnd,      ///< end of a recording
   };
 
   virtual ~InputSource() = default;
 
   // ---------------------------------------------------------------- reading thread
-  /// Fetches the next record, waiting up to timeout_ms for a live source.
-  virtual Read read(int timeout_ms) = 0;
-  /// Time of the record read() fetched, microseconds (input clock).
+  /// Reads the next record, waiting up to timeout_ms for a live source.
+  virtual Read next_record(int timeout_ms) = 0;
+  /// Time of the record next_record() read, microseconds (input clock).
   virtual TimeUs record_time_us() const = 0;
-  /// Copies the record read() fetched (record->time_us = record_time_us()). Allocates nothing.
-  virtual void fetch(InputRecord* record) const = 0;
+  /// Copies the record next_record() read (record->time_us = record_time_us()). Allocates
+  /// nothing.
+  virtual void copy_record(InputRecord* record) const = 0;
 
   // ---------------------------------------------------------------- estimator thread
   /// Folds one record into the input table, at record.time_us. Allocates nothing.
