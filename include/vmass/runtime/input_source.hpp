@@ -1,17 +1,17 @@
-// InputSource: where the daemon's estimator inputs come from, split between the two threads
-// that touch it:
+// InputSource: where the estimator's inputs come from (a candump log or SocketCAN frames
+// through a SignalTable, a samples CSV), in two halves that the daemon gives to two threads:
 //
-//   reading thread    next_record() reads the next record and says when it describes (input
+//   reading half      next_record() reads the next record and says when it describes (input
 //                     clock: log time for recordings, the tick clock for a live bus);
-//                     copy_record() copies it
-//                     into an InputRecord, which goes to the estimator thread through an SPSC
-//                     queue (the split lets the daemon pace a recording by its log time)
-//   estimator thread  apply() folds records into the source's input table; at each tick
+//                     copy_record() copies it into an InputRecord, which the daemon hands to its
+//                     estimator thread through an SPSC queue (so it can pace a recording)
+//   table half        apply() folds records into the source's input table; at each tick
 //                     sample_at(T) turns the table into the tick's Sample and input_age_us()
 //                     says how old each input is
 //
-// So the input table (a SignalTable for CAN, an InputValues for a samples CSV) lives on the
-// estimator thread only; nothing in it is shared. With `--speed max` one thread does both.
+// So in the daemon the input table (a SignalTable for CAN, an InputValues for a samples CSV)
+// lives on the estimator thread only; nothing in it is shared. Offline (TickDriver) and at
+// `--speed max` one thread uses both halves.
 //
 // Validity rule of the samples-CSV table (sample_at(InputValues...) below):
 //
