@@ -27,6 +27,8 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
   r.read("rolling_resistance_coeff", &v->rolling_resistance_coeff);
   r.read("wheel_torque_accuracy_fraction", &v->wheel_torque_accuracy_fraction);
   r.read("wheel_radius_accuracy_fraction", &v->wheel_radius_accuracy_fraction);
+  r.read("pitch_gradient_deg_per_g", &v->pitch_gradient_deg_per_g);
+  r.read("pitch_gradient_std_deg_per_g", &v->pitch_gradient_std_deg_per_g);
   r.reject_unknown_keys();
 }
 
@@ -65,12 +67,16 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.read("standstill_window_s", &p.standstill_window_s);
     s.read("max_deflection_std_m", &p.max_deflection_std_m);
     s.read("prior_std_kg", &p.prior_std_kg);
-    s.read("prior_std_fraction_of_added", &p.prior_std_fraction_of_added);
+    s.read("prior_std_fraction_of_empty", &p.prior_std_fraction_of_empty);
+    s.read("payload_x_min_fraction", &p.payload_x_min_fraction);
+    s.read("payload_x_max_fraction", &p.payload_x_max_fraction);
+    s.read("payload_y_max_fraction", &p.payload_y_max_fraction);
     s.read("out_of_range_prior_std_kg", &p.out_of_range_prior_std_kg);
     s.read("no_static_prior_std_kg", &p.no_static_prior_std_kg);
     s.read("mu_prior_std_n", &p.mu_prior_std_n);
     s.read("load_change_sigma", &p.load_change_sigma);
-    s.read("min_load_change_m", &p.min_load_change_m);
+    s.read("min_load_change_kg", &p.min_load_change_kg);
+    s.read("min_load_change_fraction", &p.min_load_change_fraction);
     s.read("max_grade_change_mps2", &p.max_grade_change_mps2);
     s.reject_unknown_keys();
   }
@@ -83,6 +89,33 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.read("min_abs_delta_force_n", &p.min_abs_delta_force_n);
     s.read("min_speed_mps", &p.min_speed_mps);
     s.read("weight", &p.weight);
+    s.read("min_excitation_sigma", &p.min_excitation_sigma);
+    s.read("settle_s", &p.settle_s);
+    s.read("use_braking", &p.use_braking);
+    s.read("brake_applied_weight_fraction", &p.brake_applied_weight_fraction);
+    s.read("noise_memory_s", &p.noise_memory_s);
+    s.read("subtract_aero", &p.subtract_aero);
+    std::string source(accel_source_name(p.accel_source));
+    s.read("accel_source", &source);
+    if (source == "accelerometer") {
+      p.accel_source = AccelSource::kAccelerometer;
+    } else if (source == "wheel_speed") {
+      p.accel_source = AccelSource::kWheelSpeed;
+    } else if (source == "calibrated") {
+      p.accel_source = AccelSource::kCalibrated;
+    } else {
+      s.fail("accel_source", "expected accelerometer, wheel_speed or calibrated, got '" + source +
+                                 "'");
+    }
+    s.read("scale_memory_s", &p.scale_memory_s);
+    YamlReader lag = s.child("lag");
+    lag.read("enabled", &p.lag.enabled);
+    lag.read("max_lag_s", &p.lag.max_lag_s);
+    lag.read("memory_s", &p.lag.memory_s);
+    lag.read("min_correlation", &p.lag.min_correlation);
+    lag.read("min_evidence_s", &p.lag.min_evidence_s);
+    lag.read("fixed_lag_s", &p.lag.fixed_lag_s);
+    lag.reject_unknown_keys();
     s.reject_unknown_keys();
   }
   {

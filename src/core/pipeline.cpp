@@ -29,13 +29,14 @@ std::string EstimatorParams::validate() const {
 
 double EstimatorParams::effective_pair_correlation_ticks() const {
   if (pair_correlation_ticks >= 1.0) return pair_correlation_ticks;
-  if (differencing.filter_cutoff_hz > 0.0) {
-    // The low-pass's time constant 1 / (2 pi f_c), in ticks: about how long its output noise
-    // stays correlated (3.2 ticks for 5 Hz at 100 Hz).
-    constexpr double kTwoPi = 6.283185307179586;
-    return std::max(1.0, differencing.tick_rate_hz / (kTwoPi * differencing.filter_cutoff_hz));
-  }
-  return 1.0;
+  // Pairs taken every tick share their noise with their neighbours for about the differencing
+  // window (they difference overlapping stretches) plus the low-pass's time constant
+  // 1 / (2 pi f_c), in ticks.
+  constexpr double kTwoPi = 6.283185307179586;
+  const double filter_ticks = differencing.filter_cutoff_hz > 0.0
+                                  ? differencing.tick_rate_hz / (kTwoPi * differencing.filter_cutoff_hz)
+                                  : 0.0;
+  return std::max(1.0, static_cast<double>(differencing.steps()) + filter_ticks);
 }
 
 std::string PipelineParams::validate() const {
@@ -62,6 +63,7 @@ Pipeline::Pipeline(const PipelineParams& params)
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   regressor_->reset(prior);
   supervisor_.on_regressor_reset();
+  longitudinal_.set_reference_mass(prior.mass_kg);
   longitudinal_.reset();
   lateral_.reset();
   has_prior_ = true;
@@ -87,9 +89,18 @@ StepResult Pipeline::step(const Sample& sample) {
     reference_deflection_std_m_ = static_mass->deflection_std_m;
     reference_grade_accel_mps2_ = static_mass->grade_accel_mps2;
     // The first standstill after driving on the empty-mass prior does not throw away what the
-    // events taught; a load change always restarts (the old estimate is about another vehicle).
-    const bool events_used = has_prior_ && regressor_->state().pairs_used > 0;
-    if (static_mass->load_changed || !events_used) {
+    // events taught. A load change shifts the belief by the added mass (with the payload
+    // prior's uncertainty) rather than forgetting what the drive taught about the vehicle.
+    const RegressorState state = regressor_->state();
+    const bool events_used = has_prior_ && state.pairs_used > 0;
+    if (static_mass->load_changed && events_used) {
+      MassPrior shifted = static_mass->prior;
+      shifted.mass_kg = state.mass_kg + static_mass->mass_change_kg;
+      shifted.mass_std_kg = std::hypot(state.mass_std_kg, static_mass->mass_change_std_kg);
+      restart(shifted, StatusReason::kLoadChanged);
+      result.reinitialised = true;
+      result.estimate_changed = true;
+    } else if (static_mass->load_changed || !events_used) {
       restart(static_mass->prior, static_mass->load_changed ? StatusReason::kLoadChanged
                                                             : StatusReason::kStaticInitialised);
       result.reinitialised = true;
@@ -111,6 +122,13 @@ StepResult Pipeline::step(const Sample& sample) {
     lateral.pair.information = pair_information_;
     result.events[static_cast<int>(Block::kLongitudinal)] = supervisor_.offer(
         Block::kLongitudinal, longitudinal, *regressor_, &result.estimate_changed);
+    // Pairs kept while the driveline lag was unknown, now at the identified lag.
+    Extraction released;
+    while (longitudinal_.pop_released(&released)) {
+      released.pair.information = pair_information_;
+      supervisor_.offer_late(Block::kLongitudinal, released, *regressor_,
+                             &result.estimate_changed);
+    }
     result.events[static_cast<int>(Block::kLateral)] =
         supervisor_.offer(Block::kLateral, lateral, *regressor_, &result.estimate_changed);
   }

@@ -23,8 +23,13 @@ void Supervisor::on_regressor_reset() {
 
 PairEvent Supervisor::offer(Block block, const Extraction& extraction, MassRegressor& regressor,
                             bool* estimate_changed) {
+  ++counters_[static_cast<int>(block)].ticks;
+  return offer_late(block, extraction, regressor, estimate_changed);
+}
+
+PairEvent Supervisor::offer_late(Block block, const Extraction& extraction,
+                                 MassRegressor& regressor, bool* estimate_changed) {
   BlockCounters& counters = counters_[static_cast<int>(block)];
-  ++counters.ticks;
   PairEvent event;
   event.verdict = extraction.verdict;
   if (!extraction.has_pair()) return event;

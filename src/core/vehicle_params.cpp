@@ -40,6 +40,10 @@ std::string VehicleParams::validate() const {
         std::pair{"wheel_radius_accuracy_fraction", wheel_radius_accuracy_fraction}}) {
     if (!(value >= 0.0 && value < 0.5)) c.fail(key, "must be in [0, 0.5)");
   }
+  if (!(std::abs(pitch_gradient_deg_per_g) < 10.0)) {
+    c.fail("pitch_gradient_deg_per_g", "must be in (-10, 10)");
+  }
+  c.non_negative("pitch_gradient_std_deg_per_g", pitch_gradient_std_deg_per_g);
   return c.message();
 }
 

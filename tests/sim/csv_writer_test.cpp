@@ -59,7 +59,7 @@ TEST(SimCsv, InvalidInputsAreEmptyCells) {
   s.set(Input::kGear, 3);
   std::ostringstream os;
   write_samples_csv(os, {s});
-  EXPECT_EQ(os.str(), std::string(kSamplesCsvHeader) + "\n1.23,,,,,,12.5,,,3\n");
+  EXPECT_EQ(os.str(), std::string(kSamplesCsvHeader) + "\n1.23,,,,,,12.5,,,3,,,\n");
 }
 
 TEST(SimCsv, SamplesReadBackToTheSimulatedValues) {

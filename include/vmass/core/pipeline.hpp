@@ -114,6 +114,8 @@ class Pipeline {
   bool flush();
   const Estimate& estimate() const { return estimate_; }
   const MassRegressor& regressor() const { return *regressor_; }
+  /// The longitudinal block (its identified lag and measured noise, for the status).
+  const LongitudinalExtractor& longitudinal() const { return longitudinal_; }
   const PipelineParams& params() const { return params_; }
 
   /// The current state, for persistence. Allocates nothing.

@@ -59,6 +59,10 @@ class Supervisor {
   /// `*estimate_changed` is set when the regressor's published state changed.
   PairEvent offer(Block block, const Extraction& extraction, MassRegressor& regressor,
                   bool* estimate_changed);
+  /// A pair released later than its tick (the lag had to be identified first): counted as a
+  /// candidate and accepted or rejected like any other, but not as a tick of its own.
+  PairEvent offer_late(Block block, const Extraction& extraction, MassRegressor& regressor,
+                       bool* estimate_changed);
 
   /// The regressor was reset (new prior): the gate opens again.
   void on_regressor_reset();

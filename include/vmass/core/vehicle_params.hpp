@@ -36,6 +36,12 @@ struct VehicleParams {
   /// wheel_radius_m: only the mass scaled by them is observable from traction pairs.
   double wheel_torque_accuracy_fraction = 0.0;
   double wheel_radius_accuracy_fraction = 0.0;
+  /// Body pitch per longitudinal acceleration (a kinematics-and-compliance value): a body-fixed
+  /// accelerometer tilts with the body and reads changes of a_x (1 + g k) too large, 1.7 % per
+  /// deg/g. Unknown on most cars: the default is typical of passenger cars, and the estimator's
+  /// interval carries its uncertainty (pitch_gradient_std_deg_per_g).
+  double pitch_gradient_deg_per_g = 1.0;
+  double pitch_gradient_std_deg_per_g = 0.5;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
   /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.
