@@ -29,6 +29,7 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
   r.read("wheel_radius_accuracy_fraction", &v->wheel_radius_accuracy_fraction);
   r.read("pitch_gradient_deg_per_g", &v->pitch_gradient_deg_per_g);
   r.read("pitch_gradient_std_deg_per_g", &v->pitch_gradient_std_deg_per_g);
+  r.read("rotating_mass_accuracy_fraction", &v->rotating_mass_accuracy_fraction);
   r.reject_unknown_keys();
 }
 
@@ -142,6 +143,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
   {
     YamlReader s = r.child("supervisor");
     s.read("innovation_gate_sigma", &e->supervisor.innovation_gate_sigma);
+    s.read("huber_k", &e->supervisor.huber_k);
     s.read("min_pairs_before_gating", &e->supervisor.min_pairs_before_gating);
     s.read("max_consecutive_rejections", &e->supervisor.max_consecutive_rejections);
     s.reject_unknown_keys();

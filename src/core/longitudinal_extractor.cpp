@@ -207,16 +207,24 @@ Extraction LongitudinalExtractor::gate(const Record& now, const Record& then, Ex
   if (params_.accel_source == AccelSource::kCalibrated) update_scale(now, then);
   lag_.add(delta_accel, y_by_lag_.data());
   if (!lag_.identified()) {
-    keep_pending(now.time_us, delta_accel, noise_n);
+    keep_pending(now.time_us, delta_accel, noise_n, pair_noise_n(now, then));
     out.verdict = PairVerdict::kAwaitingLag;
     return out;
   }
-  return finish(now.time_us, delta_accel, y_by_lag_.data(), noise_n, out);
+  return finish(now.time_us, delta_accel, y_by_lag_.data(), noise_n, pair_noise_n(now, then), out);
+}
+
+// The pair's own noise: the measured residual scale and, in quadrature, what the rotating mass's
+// uncertainty makes of its term (large in low gears, where the converter may also be unlocked).
+double LongitudinalExtractor::pair_noise_n(const Record& now, const Record& then) const {
+  const double rotating_n = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0) *
+                            (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  return std::hypot(force_noise_n(), vehicle_.rotating_mass_accuracy_fraction * rotating_n);
 }
 
 Extraction LongitudinalExtractor::finish(TimeUs time_us, double delta_accel,
                                          const double* y_by_lag, double noise_n,
-                                         Extraction out) const {
+                                         double pair_noise_n, Extraction out) const {
   const double y = lag_.y_at_lag(y_by_lag);
   const double min_force = std::max(params_.min_abs_delta_force_n,
                                     params_.min_excitation_sigma * noise_n);
@@ -238,11 +246,12 @@ Extraction LongitudinalExtractor::finish(TimeUs time_us, double delta_accel,
   out.pair.delta_accel_mps2 = delta_accel;
   out.pair.y_n = y;
   out.pair.weight = params_.weight;
-  out.pair.noise_std_n = noise_n;
+  out.pair.noise_std_n = pair_noise_n;
   return out;
 }
 
-void LongitudinalExtractor::keep_pending(TimeUs time_us, double delta_accel, double noise_n) {
+void LongitudinalExtractor::keep_pending(TimeUs time_us, double delta_accel, double noise_n,
+                                         double pair_noise_n) {
   // A full ring drops its oldest pair (the lag takes that long only when pairs are poor).
   const std::size_t slot = (pending_next_ + pending_count_) % pending_.size();
   if (pending_count_ < pending_.size()) {
@@ -250,7 +259,7 @@ void LongitudinalExtractor::keep_pending(TimeUs time_us, double delta_accel, dou
   } else {
     pending_next_ = (pending_next_ + 1) % pending_.size();
   }
-  pending_[slot] = Pending{time_us, delta_accel, noise_n};
+  pending_[slot] = Pending{time_us, delta_accel, noise_n, pair_noise_n};
   std::copy(y_by_lag_.begin(), y_by_lag_.end(),
             pending_y_.begin() + static_cast<std::ptrdiff_t>(slot * y_by_lag_.size()));
 }
@@ -259,7 +268,7 @@ bool LongitudinalExtractor::pop_released(Extraction* out) {
   if (!lag_.identified() || pending_count_ == 0) return false;
   const Pending& p = pending_[pending_next_];
   const double* y = pending_y_.data() + pending_next_ * y_by_lag_.size();
-  *out = finish(p.time_us, p.delta_accel_mps2, y, p.noise_n, Extraction{});
+  *out = finish(p.time_us, p.delta_accel_mps2, y, p.noise_n, p.pair_noise_n, Extraction{});
   pending_next_ = (pending_next_ + 1) % pending_.size();
   --pending_count_;
   return true;

@@ -44,6 +44,9 @@ std::string VehicleParams::validate() const {
     c.fail("pitch_gradient_deg_per_g", "must be in (-10, 10)");
   }
   c.non_negative("pitch_gradient_std_deg_per_g", pitch_gradient_std_deg_per_g);
+  if (!(rotating_mass_accuracy_fraction >= 0.0 && rotating_mass_accuracy_fraction <= 1.0)) {
+    c.fail("rotating_mass_accuracy_fraction", "must be in [0, 1]");
+  }
   return c.message();
 }
 

@@ -130,8 +130,9 @@ class LongitudinalExtractor {
   Extraction gate(const Record& now, const Record& then, Extraction out);
   /// The force and plausibility gates of a pair at the identified lag.
   Extraction finish(TimeUs time_us, double delta_accel, const double* y_by_lag, double noise_n,
-                    Extraction out) const;
-  void keep_pending(TimeUs time_us, double delta_accel, double noise_n);
+                    double pair_noise_n, Extraction out) const;
+  double pair_noise_n(const Record& now, const Record& then) const;
+  void keep_pending(TimeUs time_us, double delta_accel, double noise_n, double pair_noise_n);
 
   VehicleParams vehicle_;
   LongitudinalParams params_;
@@ -146,6 +147,7 @@ class LongitudinalExtractor {
     TimeUs time_us;
     double delta_accel_mps2;
     double noise_n;
+    double pair_noise_n;
   };
   std::vector<Pending> pending_;
   std::vector<double> pending_y_;  ///< pending_.size() x y_by_lag_.size()

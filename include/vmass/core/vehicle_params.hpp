@@ -42,6 +42,10 @@ struct VehicleParams {
   /// interval carries its uncertainty (pitch_gradient_std_deg_per_g).
   double pitch_gradient_deg_per_g = 1.0;
   double pitch_gradient_std_deg_per_g = 0.5;
+  /// Relative uncertainty of rotating_mass_kg / rotating_mass_by_gear_kg (inertias from a
+  /// datasheet are rarely better than this): pairs whose rotating-mass term is large (low
+  /// gears, an unlocked converter) count less.
+  double rotating_mass_accuracy_fraction = 0.3;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
   /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.
