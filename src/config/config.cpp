@@ -30,12 +30,21 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
   r.read("pitch_gradient_deg_per_g", &v->pitch_gradient_deg_per_g);
   r.read("pitch_gradient_std_deg_per_g", &v->pitch_gradient_std_deg_per_g);
   r.read("rotating_mass_accuracy_fraction", &v->rotating_mass_accuracy_fraction);
+  r.read("gear_ratios", &v->gear_ratios);
+  r.read("final_drive_ratio", &v->final_drive_ratio);
+  r.read("driveline_efficiency", &v->driveline_efficiency);
+  r.read("max_driveline_slip_fraction", &v->max_driveline_slip_fraction);
   r.reject_unknown_keys();
 }
 
-void read_suspension(YamlReader r, SuspensionParams* s) {
+// No section: the car has no rear deflection sensor (the estimator starts from the no-static
+// prior). `levelled: true`: it has one on a self-levelling axle, which reads no load.
+void read_suspension(YamlReader r, bool present, SuspensionParams* s) {
+  s->has_sensor = present;
+  if (!present) return;
+  r.read("levelled", &s->levelled);
   for (const SuspensionField& field : kSuspensionFields) {
-    if (field.required) {
+    if (field.required && !s->levelled) {
       r.require(field.key, &(s->*field.member));
     } else {
       r.read(field.key, &(s->*field.member));
@@ -141,6 +150,18 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.reject_unknown_keys();
   }
   {
+    YamlReader s = r.child("load_change");
+    LoadChangeParams& p = e->load_change;
+    s.read("detect_in_motion", &p.detect_in_motion);
+    s.read("min_stop_s", &p.min_stop_s);
+    s.read("decide_sigma", &p.decide_sigma);
+    s.read("min_change_fraction", &p.min_change_fraction);
+    int min_pairs = static_cast<int>(p.min_pairs);
+    s.read("min_pairs", &min_pairs);
+    p.min_pairs = min_pairs;
+    s.reject_unknown_keys();
+  }
+  {
     YamlReader s = r.child("supervisor");
     s.read("innovation_gate_sigma", &e->supervisor.innovation_gate_sigma);
     s.read("huber_k", &e->supervisor.huber_k);
@@ -174,9 +195,9 @@ ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::str
     c.directory = directory;
     YamlReader top(root, file, "");
     if (!top.has("vehicle")) top.fail("vehicle", "required section is missing");
-    if (!top.has("suspension")) top.fail("suspension", "required section is missing");
     read_vehicle(top.child("vehicle"), &c.pipeline.vehicle);
-    read_suspension(top.child("suspension"), &c.pipeline.suspension);
+    const bool has_suspension = top.has("suspension");
+    read_suspension(top.child("suspension"), has_suspension, &c.pipeline.suspension);
     read_estimator(top.child("estimator"), &c.pipeline.estimator);
     c.can = top.raw("can");
     c.lcm = top.raw("lcm");

@@ -36,6 +36,8 @@ std::string_view reason_name(StatusReason r) {
       return "inputs_invalid";
     case StatusReason::kRestored:
       return "restored";
+    case StatusReason::kNoLoadSensor:
+      return "no_load_sensor";
   }
   return "unknown";
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "vmass/core/param_check.hpp"
 
@@ -53,11 +54,15 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
                                              const DifferencingParams& differencing)
     : vehicle_(vehicle),
       params_(params),
+      required_(input_bit(Input::kAccelX) | input_bit(Input::kSpeed) |
+                (vehicle.knows_driveline() ? input_bit(Input::kEngineTorque) | input_bit(Input::kGear)
+                                           : input_bit(Input::kWheelTorque))),
       tick_rate_hz_(differencing.tick_rate_hz),
       accel_x_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       accel_y_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       force_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       speed_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
+      brake_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       history_(differencing),
       filtered_force_(static_cast<std::size_t>(differencing.steps()) + 1 +
                       static_cast<std::size_t>(std::lround(params.lag.max_lag_s *
@@ -82,15 +87,19 @@ void LongitudinalExtractor::reset() {
   accel_y_filter_.reset();
   force_filter_.reset();
   speed_filter_.reset();
+  brake_filter_.reset();
   has_previous_speed_ = false;
   clean_ticks_ = 0;
   pending_count_ = 0;  // pairs of a stretch we no longer difference (or of another load)
 }
 
-bool LongitudinalExtractor::braking(const Sample& s) const {
+bool LongitudinalExtractor::braking(const Sample& s) {
   if (s.has(Input::kBrakePressure) && vehicle_.brake_gain_n_per_pa > 0.0) {
+    // Decided on the low-passed pressure: a sensor's noise around zero (a few kPa, enough on a
+    // truck's air brakes) must not flicker the brakes on and cut every clean stretch short.
+    const double pressure_pa = brake_filter_.step(s.brake_pressure_pa);
     const double weight_n = vehicle_.empty_mass_kg * vehicle_.gravity_mps2;
-    return s.brake_pressure_pa * vehicle_.brake_gain_n_per_pa >
+    return pressure_pa * vehicle_.brake_gain_n_per_pa >
            params_.brake_applied_weight_fraction * weight_n;
   }
   if (s.has(Input::kBrakeSwitch)) return s.brake_switch;
@@ -98,11 +107,30 @@ bool LongitudinalExtractor::braking(const Sample& s) const {
   return !(s.wheel_torque_nm > 0.0);
 }
 
+double LongitudinalExtractor::wheel_torque_nm(const Sample& s) const {
+  if (s.has(Input::kWheelTorque)) return s.wheel_torque_nm;
+  if (s.has(Input::kEngineTorque) && s.has(Input::kGear)) {
+    return vehicle_.wheel_torque_from_engine_nm(s.engine_torque_nm, s.gear);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+bool LongitudinalExtractor::driveline_slips(const Sample& s) const {
+  if (s.has(Input::kWheelTorque) || !s.has(Input::kEngineSpeed) || !s.has(Input::kGear)) {
+    return false;
+  }
+  const double through_gear_radps =
+      std::abs(s.speed_mps) / vehicle_.wheel_radius_m * vehicle_.overall_ratio(s.gear);
+  if (!(through_gear_radps > 0.0)) return true;
+  return !(std::abs(s.engine_speed_radps - through_gear_radps) <=
+           vehicle_.max_driveline_slip_fraction * through_gear_radps);
+}
+
 // The tick's force and whether the tick is clean (see the header). False: not usable at all.
 bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
-  if (!s.has_all(kRequired)) return false;
+  if (!s.has_all(required_)) return false;
   const double r = vehicle_.wheel_radius_m;
-  double force = s.wheel_torque_nm / r;
+  double force = wheel_torque_nm(s) / r;
   const bool brakes = braking(s);
   // The brake force is subtracted wherever the pressure is known: below the "applied" level it
   // is small, and its gain's error with it, but it is not zero (a brake released inside a window
@@ -115,7 +143,8 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   if (!std::isfinite(force) || !std::isfinite(s.accel_x_mps2) || !std::isfinite(s.speed_mps)) {
     return false;
   }
-  const bool gear_ok = !s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_);
+  const bool gear_ok = (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) &&
+                       !driveline_slips(s);
   previous_gear_ = s.has(Input::kGear) ? s.gear : 0;
   in->force_n = force;
   in->clean = (!brakes || params_.use_braking) && gear_ok &&
@@ -145,7 +174,8 @@ void LongitudinalExtractor::update_noise(double residual_n) {
 
 void LongitudinalExtractor::fill_y_by_lag(const Record& now, const Record& then) {
   const double rotating_kg = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
-  const double rotating_n = rotating_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  const double rotating_n =
+      rotating_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
   const std::size_t window = static_cast<std::size_t>(window_ticks_);
   const std::size_t available = filtered_force_.size();
   for (std::size_t lag = 0; lag < y_by_lag_.size(); ++lag) {
@@ -283,7 +313,7 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
   TickInputs in;
   if (!read(s, &in)) {
     reset();  // a hole in the data: never difference across it
-    out.verdict = s.has_all(kRequired) ? PairVerdict::kNonFinite : PairVerdict::kInputsInvalid;
+    out.verdict = s.has_all(required_) ? PairVerdict::kNonFinite : PairVerdict::kInputsInvalid;
     return out;
   }
   clean_ticks_ = in.clean ? clean_ticks_ + 1 : 0;

@@ -15,6 +15,7 @@ std::string EstimatorParams::validate() const {
   ParamCheck c("estimator");
   c.nested(differencing.validate());
   c.nested(static_init.validate());
+  c.nested(load_change.validate());
   c.nested(longitudinal.validate());
   c.nested(lateral.validate());
   c.nested(supervisor.validate());
@@ -50,6 +51,9 @@ std::string PipelineParams::validate() const {
 Pipeline::Pipeline(const PipelineParams& params)
     : params_(params),
       static_init_(params.vehicle, params.suspension, params.estimator.static_init),
+      load_monitor_(params.estimator.load_change, params.estimator.rls, params.estimator.bayes,
+                    params.estimator.type == RegressorType::kRls, static_init_.no_static_prior(),
+                    params.vehicle.empty_mass_kg, params.estimator.static_init.standstill_speed_mps),
       longitudinal_(params.vehicle, params.estimator.longitudinal, params.estimator.differencing),
       lateral_(params.vehicle, params.estimator.lateral, params.estimator.differencing),
       supervisor_(params.estimator.supervisor),
@@ -71,6 +75,44 @@ void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   prior_ = prior;
   estimate_.initial_mass_kg = prior.mass_kg;
   estimate_.prior_reason = reason;
+}
+
+void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
+  const bool monitor = !params_.suspension.carries_load();
+  if (monitor) load_monitor_.step(sample);
+  // Extractors run on every tick (their filters need continuity); the supervisor decides.
+  Extraction longitudinal = longitudinal_.step(sample);
+  Extraction lateral = lateral_.step(sample);
+  longitudinal.pair.information = pair_information_;
+  lateral.pair.information = pair_information_;
+  result->events[static_cast<int>(Block::kLongitudinal)] = supervisor_.offer(
+      Block::kLongitudinal, longitudinal, *regressor_, &result->estimate_changed);
+  if (monitor && longitudinal.has_pair()) load_monitor_.offer(longitudinal.pair);
+  // Pairs kept while the driveline lag was unknown, now at the identified lag.
+  Extraction released;
+  while (longitudinal_.pop_released(&released)) {
+    released.pair.information = pair_information_;
+    supervisor_.offer_late(Block::kLongitudinal, released, *regressor_, &result->estimate_changed);
+    if (monitor && released.has_pair()) load_monitor_.offer(released.pair);
+  }
+  result->events[static_cast<int>(Block::kLateral)] =
+      supervisor_.offer(Block::kLateral, lateral, *regressor_, &result->estimate_changed);
+  if (monitor && lateral.has_pair()) load_monitor_.offer(lateral.pair);
+}
+
+void Pipeline::adopt_challenger() {
+  if (params_.estimator.type == RegressorType::kRls) {
+    rls_ = load_monitor_.challenger_rls();
+  } else {
+    bayes_ = load_monitor_.challenger_bayes();
+  }
+  load_monitor_.dismiss();
+  supervisor_.on_regressor_reset();
+  longitudinal_.set_reference_mass(regressor_->state().mass_kg);
+  prior_ = load_monitor_.start_prior();
+  prior_reason_ = StatusReason::kLoadChanged;
+  estimate_.initial_mass_kg = prior_.mass_kg;
+  estimate_.prior_reason = StatusReason::kLoadChanged;
 }
 
 bool Pipeline::flush() {
@@ -107,6 +149,11 @@ StepResult Pipeline::step(const Sample& sample) {
       result.estimate_changed = true;
     }
   }
+  if (!has_prior_ && !params_.suspension.carries_load()) {
+    restart(static_init_.no_static_prior(), StatusReason::kNoLoadSensor);
+    result.reinitialised = true;
+    result.estimate_changed = true;
+  }
   if (!has_prior_ && sample.has(Input::kSpeed) &&
       std::abs(sample.speed_mps) > params_.estimator.static_init.standstill_speed_mps) {
     restart(static_init_.no_static_prior(), StatusReason::kNoStaticPrior);
@@ -114,23 +161,11 @@ StepResult Pipeline::step(const Sample& sample) {
     result.estimate_changed = true;
   }
 
-  if (has_prior_) {
-    // Extractors run on every tick (their filters need continuity); the supervisor decides.
-    Extraction longitudinal = longitudinal_.step(sample);
-    Extraction lateral = lateral_.step(sample);
-    longitudinal.pair.information = pair_information_;
-    lateral.pair.information = pair_information_;
-    result.events[static_cast<int>(Block::kLongitudinal)] = supervisor_.offer(
-        Block::kLongitudinal, longitudinal, *regressor_, &result.estimate_changed);
-    // Pairs kept while the driveline lag was unknown, now at the identified lag.
-    Extraction released;
-    while (longitudinal_.pop_released(&released)) {
-      released.pair.information = pair_information_;
-      supervisor_.offer_late(Block::kLongitudinal, released, *regressor_,
-                             &result.estimate_changed);
-    }
-    result.events[static_cast<int>(Block::kLateral)] =
-        supervisor_.offer(Block::kLateral, lateral, *regressor_, &result.estimate_changed);
+  if (has_prior_) offer_pairs(sample, &result);
+  if (load_monitor_.contradicts(regressor_->state())) {
+    adopt_challenger();
+    result.reinitialised = true;
+    result.estimate_changed = true;
   }
 
   const EstimateStatus previous_status = estimate_.status;
@@ -249,8 +284,9 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   estimate_.blocks[0] = supervisor_.counters(Block::kLongitudinal);
   estimate_.blocks[1] = supervisor_.counters(Block::kLateral);
 
-  InputMask needed = input_bit(Input::kSpeed) | input_bit(Input::kRearRightDeflection);
-  if (params_.estimator.longitudinal.enabled) needed |= LongitudinalExtractor::kRequired;
+  InputMask needed = input_bit(Input::kSpeed);
+  if (params_.suspension.carries_load()) needed |= input_bit(Input::kRearRightDeflection);
+  if (params_.estimator.longitudinal.enabled) needed |= longitudinal_.required_inputs();
   if (params_.estimator.lateral.enabled) needed |= LateralExtractor::kRequired;
   estimate_.invalid_inputs = needed & ~sample.valid;
   refresh_belief();
@@ -279,8 +315,9 @@ void Pipeline::refresh_belief() {
     estimate_.status = EstimateStatus::kDegraded;
     estimate_.reason = StatusReason::kInputsInvalid;
   } else if (state.pairs_used == 0) {
-    estimate_.status = prior_reason_ == StatusReason::kNoStaticPrior ? EstimateStatus::kInitialising
-                                                                     : EstimateStatus::kStaticOnly;
+    const bool static_prior = prior_reason_ != StatusReason::kNoStaticPrior &&
+                              prior_reason_ != StatusReason::kNoLoadSensor;
+    estimate_.status = static_prior ? EstimateStatus::kStaticOnly : EstimateStatus::kInitialising;
     estimate_.reason = prior_reason_;
   } else {
     const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);

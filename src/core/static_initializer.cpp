@@ -123,6 +123,7 @@ void StaticInitializer::restart_window() {
 }
 
 std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
+  if (!suspension_.carries_load()) return std::nullopt;
   const bool usable = sample.has(Input::kSpeed) && sample.has(Input::kRearRightDeflection) &&
                       std::isfinite(sample.rear_right_deflection_m);
   const bool still = usable && std::abs(sample.speed_mps) <= params_.standstill_speed_mps;

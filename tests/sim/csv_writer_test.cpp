@@ -74,7 +74,7 @@ TEST(SimCsv, SamplesReadBackToTheSimulatedValues) {
   std::size_t k = 0;
   while (std::getline(is, line)) {
     const std::vector<std::string> cells = split(line);
-    ASSERT_EQ(cells.size(), 10u);
+    ASSERT_EQ(cells.size(), 1u + kInputCount);
     EXPECT_EQ(from_seconds(std::strtod(cells[0].c_str(), nullptr)), r.samples[k].time_us);
     for (int i = 0; i < kInputCount; ++i) {
       const double v = r.samples[k].value(static_cast<Input>(i));

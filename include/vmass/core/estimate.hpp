@@ -38,6 +38,8 @@ enum class StatusReason : std::uint8_t {
   kIntervalNarrow,            ///< converged
   kInputsInvalid,             ///< degraded: see invalid_inputs
   kRestored,                  ///< state restored from a saved estimate
+  kNoLoadSensor,              ///< no deflection sensor that carries the load (none, or a
+                              ///< self-levelling axle): prior = empty + half the capacity
 };
 
 std::string_view status_name(EstimateStatus s);
@@ -52,8 +54,9 @@ struct Estimate {
   double ci_high_kg = 0.0;
   double initial_mass_kg = 0.0;  ///< the static (or empty-mass) prior of the current load
   /// Where initial_mass_kg came from: static_initialised or load_changed (eq. 3 at a
-  /// standstill), no_static_prior (the empty mass: driving began before any standstill),
-  /// restored (a saved state); waiting_for_standstill while there is none.
+  /// standstill), no_static_prior (driving began before any standstill), no_load_sensor (the
+  /// car has no deflection sensor that reads the load), restored (a saved state);
+  /// waiting_for_standstill while there is none.
   StatusReason prior_reason = StatusReason::kWaitingForStandstill;
   long pairs_used = 0;
   EstimateStatus status = EstimateStatus::kInitialising;

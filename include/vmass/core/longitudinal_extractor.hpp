@@ -97,10 +97,11 @@ class LongitudinalExtractor {
   /// The same in acceleration, force_noise_n() / M_ref, m/s^2.
   double accel_noise_mps2() const { return force_noise_n() / reference_mass_kg_; }
 
-  /// Inputs this block needs (wheel torque, a_x, speed); brake pressure or the brake switch
-  /// decide the brake state when present.
-  static constexpr InputMask kRequired =
-      input_bit(Input::kWheelTorque) | input_bit(Input::kAccelX) | input_bit(Input::kSpeed);
+  /// Inputs this block needs: a_x, speed and the wheel torque, or, on a car whose driveline
+  /// ratios are configured, the engine torque and the gear (the engine speed, when present,
+  /// detects a slipping converter or clutch). Brake pressure or the brake switch decide the
+  /// brake state when present.
+  InputMask required_inputs() const { return required_; }
 
  private:
   static constexpr double kScalePerMeanAbs = 1.2533;  ///< sigma / E|r| of a normal residual
@@ -119,7 +120,11 @@ class LongitudinalExtractor {
   };
 
   bool read(const Sample& s, TickInputs* in);
-  bool braking(const Sample& s) const;
+  /// C_wheel from the wheel torque, or from the engine torque through the gear; NaN if neither.
+  double wheel_torque_nm(const Sample& s) const;
+  /// The engine turns faster or slower than the wheels through the gear (converter, clutch).
+  bool driveline_slips(const Sample& s) const;
+  bool braking(const Sample& s);
   Record filtered_record(const Sample& s, double force_n);
   void update_noise(double residual_n);
   /// The pair's acceleration change from the configured source.
@@ -136,8 +141,9 @@ class LongitudinalExtractor {
 
   VehicleParams vehicle_;
   LongitudinalParams params_;
+  InputMask required_;
   double tick_rate_hz_;
-  LowPassFilter accel_x_filter_, accel_y_filter_, force_filter_, speed_filter_;
+  LowPassFilter accel_x_filter_, accel_y_filter_, force_filter_, speed_filter_, brake_filter_;
   DifferencingHistory<Record> history_;
   DelayLine<double> filtered_force_;  ///< the last max_lag + window ticks of filtered force
   LagEstimator lag_;

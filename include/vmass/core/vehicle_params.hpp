@@ -46,14 +46,35 @@ struct VehicleParams {
   /// datasheet are rarely better than this): pairs whose rotating-mass term is large (low
   /// gears, an unlocked converter) count less.
   double rotating_mass_accuracy_fraction = 0.3;
+  /// The driveline, for a car that reports engine torque only (not wheel torque):
+  ///   C_wheel = T_engine i_gear i_final eta    (T_engine / eta when the engine is dragged)
+  /// Empty gear_ratios or final_drive_ratio 0: unknown (wheel torque is then required).
+  std::vector<double> gear_ratios;  ///< index gear - 1
+  double final_drive_ratio = 0.0;
+  double driveline_efficiency = 0.92;
+  /// Above this relative difference between the engine speed and the wheel speed through the
+  /// gear, a torque converter or clutch slips and the engine torque does not reach the wheels
+  /// by the ratios: such ticks are not clean.
+  double max_driveline_slip_fraction = 0.05;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
   /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.
   double rotating_mass_for_gear(int gear, bool gear_valid) const;
+  /// Gear ratios and the final drive are known: wheel torque can come from engine torque.
+  bool knows_driveline() const { return final_drive_ratio > 0.0 && !gear_ratios.empty(); }
+  /// i_gear i_final for a forward gear; 0 when the gear is not one of gear_ratios.
+  double overall_ratio(int gear) const;
+  /// Wheel torque from engine torque in a forward gear (see above); NaN when unknown.
+  double wheel_torque_from_engine_nm(double engine_torque_nm, int gear) const;
   std::string validate() const;
 };
 
 struct SuspensionParams {
+  /// A rear(-right) deflection sensor is configured (the config has a suspension section).
+  bool has_sensor = true;
+  /// The rear axle is self-levelling (air suspension): the ride height carries no load, so the
+  /// sensor gives no static mass and the estimator starts from the no-static prior.
+  bool levelled = false;
   double stiffness_n_per_m = 0.0;                                       ///< c_Brr
   double empty_deflection_m = 0.0;                                      ///< z0
   double progressive_knee_m = std::numeric_limits<double>::infinity();  ///< z_knee
@@ -64,6 +85,8 @@ struct SuspensionParams {
   /// Rear-right wheel force above the empty state for a sensor reading z, N.
   double wheel_force_n(double deflection_m) const;
   bool is_progressive() const { return progressive_rate_n_per_m2 > 0.0; }
+  /// Eq. (3) applies: a sensor whose reading carries the load.
+  bool carries_load() const { return has_sensor && !levelled; }
   std::string validate() const;
 };
 
