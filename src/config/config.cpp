@@ -114,8 +114,8 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     } else if (source == "calibrated") {
       p.accel_source = AccelSource::kCalibrated;
     } else {
-      s.fail("accel_source", "expected accelerometer, wheel_speed or calibrated, got '" + source +
-                                 "'");
+      s.fail("accel_source",
+             "expected accelerometer, wheel_speed or calibrated, got '" + source + "'");
     }
     s.read("scale_memory_s", &p.scale_memory_s);
     YamlReader lag = s.child("lag");

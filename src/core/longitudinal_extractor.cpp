@@ -55,8 +55,9 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
     : vehicle_(vehicle),
       params_(params),
       required_(input_bit(Input::kAccelX) | input_bit(Input::kSpeed) |
-                (vehicle.knows_driveline() ? input_bit(Input::kEngineTorque) | input_bit(Input::kGear)
-                                           : input_bit(Input::kWheelTorque))),
+                (vehicle.knows_driveline()
+                     ? input_bit(Input::kEngineTorque) | input_bit(Input::kGear)
+                     : input_bit(Input::kWheelTorque))),
       tick_rate_hz_(differencing.tick_rate_hz),
       accel_x_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       accel_y_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
@@ -64,13 +65,14 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
       speed_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       brake_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       history_(differencing),
-      filtered_force_(static_cast<std::size_t>(differencing.steps()) + 1 +
-                      static_cast<std::size_t>(std::lround(params.lag.max_lag_s *
-                                                           differencing.tick_rate_hz))),
+      filtered_force_(
+          static_cast<std::size_t>(differencing.steps()) + 1 +
+          static_cast<std::size_t>(std::lround(params.lag.max_lag_s * differencing.tick_rate_hz))),
       lag_(params.lag, differencing.tick_rate_hz),
       y_by_lag_(static_cast<std::size_t>(lag_.max_lag_ticks()) + 1, 0.0),
       pending_(static_cast<std::size_t>(
-          std::ceil(params.lag.min_evidence_s * differencing.tick_rate_hz)) + 1),
+                   std::ceil(params.lag.min_evidence_s * differencing.tick_rate_hz)) +
+               1),
       pending_y_(pending_.size() * y_by_lag_.size(), 0.0),
       reference_mass_kg_(vehicle.empty_mass_kg),
       residual_scale_n_(kInitialNoiseMps2 * vehicle.empty_mass_kg / kScalePerMeanAbs),
@@ -143,12 +145,12 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   if (!std::isfinite(force) || !std::isfinite(s.accel_x_mps2) || !std::isfinite(s.speed_mps)) {
     return false;
   }
-  const bool gear_ok = (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) &&
-                       !driveline_slips(s);
+  const bool gear_ok =
+      (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) && !driveline_slips(s);
   previous_gear_ = s.has(Input::kGear) ? s.gear : 0;
   in->force_n = force;
-  in->clean = (!brakes || params_.use_braking) && gear_ok &&
-              std::abs(s.speed_mps) >= params_.min_speed_mps;
+  in->clean =
+      (!brakes || params_.use_braking) && gear_ok && std::abs(s.speed_mps) >= params_.min_speed_mps;
   return true;
 }
 
@@ -174,8 +176,7 @@ void LongitudinalExtractor::update_noise(double residual_n) {
 
 void LongitudinalExtractor::fill_y_by_lag(const Record& now, const Record& then) {
   const double rotating_kg = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
-  const double rotating_n =
-      rotating_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  const double rotating_n = rotating_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
   const std::size_t window = static_cast<std::size_t>(window_ticks_);
   const std::size_t available = filtered_force_.size();
   for (std::size_t lag = 0; lag < y_by_lag_.size(); ++lag) {
@@ -227,8 +228,8 @@ Extraction LongitudinalExtractor::gate(const Record& now, const Record& then, Ex
   }
   const double delta_accel = this->delta_accel(now, then);
   const double noise_n = force_noise_n();
-  const double min_force = std::max(params_.min_abs_delta_force_n,
-                                    params_.min_excitation_sigma * noise_n);
+  const double min_force =
+      std::max(params_.min_abs_delta_force_n, params_.min_excitation_sigma * noise_n);
   if (std::abs(delta_accel) * reference_mass_kg_ <=
       std::max(params_.min_abs_delta_accel_x_mps2 * reference_mass_kg_, min_force)) {
     out.verdict = PairVerdict::kSmallDeltaAccel;
@@ -252,12 +253,12 @@ double LongitudinalExtractor::pair_noise_n(const Record& now, const Record& then
   return std::hypot(force_noise_n(), vehicle_.rotating_mass_accuracy_fraction * rotating_n);
 }
 
-Extraction LongitudinalExtractor::finish(TimeUs time_us, double delta_accel,
-                                         const double* y_by_lag, double noise_n,
-                                         double pair_noise_n, Extraction out) const {
+Extraction LongitudinalExtractor::finish(TimeUs time_us, double delta_accel, const double* y_by_lag,
+                                         double noise_n, double pair_noise_n,
+                                         Extraction out) const {
   const double y = lag_.y_at_lag(y_by_lag);
-  const double min_force = std::max(params_.min_abs_delta_force_n,
-                                    params_.min_excitation_sigma * noise_n);
+  const double min_force =
+      std::max(params_.min_abs_delta_force_n, params_.min_excitation_sigma * noise_n);
   if (std::abs(y) <= min_force) {
     out.verdict = PairVerdict::kSmallDeltaForce;
     return out;

@@ -37,8 +37,7 @@ namespace {
 
 // E[1/q] and E[1/q^2] of the over-read factor q = (x / l_f)(1 - 2 u), x uniform on
 // [a l, b l], u = y / t uniform on [-c, c] (independent), in closed form.
-void payload_factor(double lf_over_l, double a, double b, double c, double* mean,
-                    double* std) {
+void payload_factor(double lf_over_l, double a, double b, double c, double* mean, double* std) {
   const double e_x = a == b ? lf_over_l / a : lf_over_l * std::log(b / a) / (b - a);
   const double e_x2 = lf_over_l * lf_over_l / (a * b);
   const double e_y = c > 0.0 ? std::log((1.0 + 2.0 * c) / (1.0 - 2.0 * c)) / (4.0 * c) : 1.0;
@@ -180,15 +179,14 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
   }
   // The eq. (3) mass change between the windows against the larger of the floors and the
   // windows' noise (the deflection's spread turned into mass by eq. 3's slope).
-  const double eq3_change_kg = mass_from_deflection_kg(mean) -
-                               mass_from_deflection_kg(reference_->deflection_m);
-  const double kg_per_m = std::abs(mass_from_deflection_kg(mean + 1e-3) -
-                                   mass_from_deflection_kg(mean)) * 1e3;
+  const double eq3_change_kg =
+      mass_from_deflection_kg(mean) - mass_from_deflection_kg(reference_->deflection_m);
+  const double kg_per_m =
+      std::abs(mass_from_deflection_kg(mean + 1e-3) - mass_from_deflection_kg(mean)) * 1e3;
   const double noise_kg = kg_per_m * std::max(spread, reference_->deflection_std_m);
-  const double threshold_kg =
-      std::max({params_.min_load_change_kg,
-                params_.min_load_change_fraction * vehicle_.empty_mass_kg,
-                params_.load_change_sigma * noise_kg});
+  const double threshold_kg = std::max({params_.min_load_change_kg,
+                                        params_.min_load_change_fraction * vehicle_.empty_mass_kg,
+                                        params_.load_change_sigma * noise_kg});
   if (std::abs(eq3_change_kg) <= threshold_kg) return std::nullopt;
 
   reference_ = Reference{mean, spread, grade};

@@ -21,7 +21,8 @@ PipelineParams params(RegressorType type) {
   // the noise and biases the slope upwards (+19 % unfiltered). The low-pass removes most of it.
   p.estimator.differencing.filter_cutoff_hz = 5.0;
   // The synthetic loads sit at the centre of gravity: eq. (3) reads them exactly.
-  p.estimator.static_init.payload_x_min_fraction = p.vehicle.cg_to_front_axle_m / p.vehicle.wheelbase_m;
+  p.estimator.static_init.payload_x_min_fraction =
+      p.vehicle.cg_to_front_axle_m / p.vehicle.wheelbase_m;
   p.estimator.static_init.payload_x_max_fraction = p.estimator.static_init.payload_x_min_fraction;
   p.estimator.static_init.payload_y_max_fraction = 0.0;
   return p;

@@ -4,8 +4,8 @@
 // sample; the level page at the sample's time) to within rounding, for every input; the log text
 // reads back to the same frames; and the DBC compiled into the simulator is
 // config/demo_vehicle.dbc. (Compiled only when the simulator is part of the build.)
-#include <bitset>
 #include <gtest/gtest.h>
+#include <bitset>
 
 #include <bitset>
 #include <cmath>
@@ -15,9 +15,9 @@
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/signals/signal_table.hpp"
-#include "vmass/sim/sensor_model.hpp"
 #include "vmass/sim/can_writer.hpp"
 #include "vmass/sim/scenario.hpp"
+#include "vmass/sim/sensor_model.hpp"
 #include "vmass/sim/simulator.hpp"
 
 namespace vmass::signals {
@@ -77,7 +77,8 @@ TEST(SimCan, FramesDecodeBackToTheSimulatedSamples) {
   ASSERT_EQ(parse_signal_mapping(can["inputs"], "config.yaml", *decoder, "vehicle.dbc", &mapping),
             "");
   // The demo car's bus carries what the sensor model measures (wheel torque, brake pressure).
-  EXPECT_EQ(mapping.inputs.size(), static_cast<std::size_t>(std::bitset<32>(sim::kSensorModelInputs).count()));
+  EXPECT_EQ(mapping.inputs.size(),
+            static_cast<std::size_t>(std::bitset<32>(sim::kSensorModelInputs).count()));
   SignalTable table(decoder, mapping);
 
   const TimeUs t0 = frames.front().time_us;

@@ -26,10 +26,10 @@ namespace vmass {
 struct LagParams {
   bool enabled = true;
   double max_lag_s = 0.15;
-  double memory_s = 120.0;       ///< of accepted pairs
+  double memory_s = 120.0;  ///< of accepted pairs
   double min_correlation = 0.5;
-  double min_evidence_s = 2.0;   ///< of accepted pairs
-  double fixed_lag_s = -1.0;     ///< >= 0: use this lag instead of identifying it
+  double min_evidence_s = 2.0;  ///< of accepted pairs
+  double fixed_lag_s = -1.0;    ///< >= 0: use this lag instead of identifying it
 
   std::string validate() const;
 };

@@ -163,7 +163,7 @@ class LongitudinalExtractor {
   double residual_scale_n_;
   double noise_forget_;
   double scale_forget_;
-  double pitch_scale_;  ///< 1 + g k_pitch: the accelerometer's over-read of da from body pitch
+  double pitch_scale_;       ///< 1 + g k_pitch: the accelerometer's over-read of da from body pitch
   double scale_s_vv_ = 0.0;  ///< kCalibrated: sum of dv'^2
   double scale_s_dv_ = 0.0;  ///< ... and of (da_x - dv') dv'
   long scale_pairs_ = 0;

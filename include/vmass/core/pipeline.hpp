@@ -139,6 +139,10 @@ class Pipeline {
   void refresh_estimate(const Sample& sample);
   /// The estimate's belief and status from the regressor (inputs as of the last step).
   void refresh_belief();
+  /// The regression's state into estimate_, with the model error and the plausibility check.
+  void publish_state(const RegressorState& state);
+  /// mass_model_std_kg for a mass (see Estimate).
+  double model_std_kg(double mass_kg) const;
 
   PipelineParams params_;
   StaticInitializer static_init_;
@@ -151,6 +155,7 @@ class Pipeline {
   MassRegressor* regressor_;
   double pair_information_;  ///< RegressionPair::information of every extracted pair
   bool has_prior_ = false;
+  bool has_plausible_ = false;  ///< an estimate of the current load was plausible
   StatusReason prior_reason_ = StatusReason::kWaitingForStandstill;
   MassPrior prior_;
   bool has_reference_ = false;

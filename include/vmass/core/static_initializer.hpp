@@ -7,7 +7,8 @@
 //
 // Eq. (3) puts the added load at the centre of gravity and shares it equally between the rear
 // wheels. A load at x behind the front axle and y to the left (of a track t) really adds
-//   dF_rr = dm g (x / l) (1/2 - y / t),  so eq. (3) reads  dM_eq3 = dm q,  q = (x / l_f)(1 - 2 y / t)
+//   dF_rr = dm g (x / l) (1/2 - y / t),  so eq. (3) reads  dM_eq3 = dm q,  q = (x / l_f)(1 - 2 y /
+//   t)
 // (a boot load reads 2.5-3x heavy, the driver on the left about half). Where the payload sits is
 // not known, so the prior takes the added mass as dm = dM_eq3 / q with x uniform over
 // payload_x_range (fractions of l: front seats to boot by default) and y / t uniform over
@@ -47,12 +48,12 @@ struct StaticInitParams {
   double max_deflection_std_m = 0.002;
   double prior_std_kg = 40.0;                  ///< base std of the static mass,
   double prior_std_fraction_of_empty = 0.025;  ///< or this fraction of M_idle if larger
-  double payload_x_min_fraction = 0.45;  ///< where payload may sit, in fractions of l behind
-  double payload_x_max_fraction = 1.15;  ///< the front axle (front seats .. boot)
-  double payload_y_max_fraction = 0.25;  ///< and |y| / track (seats beside the centre line)
-  double out_of_range_prior_std_kg = 250.0;  ///< beyond the linear/calibrated range
-  double no_static_prior_std_kg = 400.0;     ///< no deflection and no maximum mass known
-  double mu_prior_std_n = 300.0;             ///< prior std of the model imprecision mu
+  double payload_x_min_fraction = 0.45;        ///< where payload may sit, in fractions of l behind
+  double payload_x_max_fraction = 1.15;        ///< the front axle (front seats .. boot)
+  double payload_y_max_fraction = 0.25;        ///< and |y| / track (seats beside the centre line)
+  double out_of_range_prior_std_kg = 250.0;    ///< beyond the linear/calibrated range
+  double no_static_prior_std_kg = 400.0;       ///< no deflection and no maximum mass known
+  double mu_prior_std_n = 300.0;               ///< prior std of the model imprecision mu
   double load_change_sigma = 6.0;
   double min_load_change_kg = 50.0;        ///< eq. (3) mass change that counts as a load change,
   double min_load_change_fraction = 0.03;  ///< or this fraction of M_idle if larger
@@ -65,11 +66,11 @@ struct StaticInitParams {
 struct StaticMass {
   TimeUs time_us = 0;
   MassPrior prior;
-  double deflection_m = 0.0;      ///< window mean
-  double deflection_std_m = 0.0;  ///< window spread
-  double grade_accel_mps2 = 0.0;  ///< mean a_x over the window (g sin(grade)); NaN if unknown
-  double added_mass_kg = 0.0;     ///< prior mass - M_idle (payload-position prior applied)
-  bool load_changed = false;      ///< false for the first initialisation
+  double deflection_m = 0.0;        ///< window mean
+  double deflection_std_m = 0.0;    ///< window spread
+  double grade_accel_mps2 = 0.0;    ///< mean a_x over the window (g sin(grade)); NaN if unknown
+  double added_mass_kg = 0.0;       ///< prior mass - M_idle (payload-position prior applied)
+  bool load_changed = false;        ///< false for the first initialisation
   double mass_change_kg = 0.0;      ///< load change: mass added since the reference window
   double mass_change_std_kg = 0.0;  ///< ... and its uncertainty
   bool beyond_calibrated_range = false;

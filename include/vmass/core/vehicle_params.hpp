@@ -33,9 +33,11 @@ struct VehicleParams {
   double air_density_kg_per_m3 = 1.2;
   double rolling_resistance_coeff = 0.0;  ///< f_r
   /// Declared accuracy (bound of the relative error) of the wheel-torque signal's scale and of
-  /// wheel_radius_m: only the mass scaled by them is observable from traction pairs.
-  double wheel_torque_accuracy_fraction = 0.0;
-  double wheel_radius_accuracy_fraction = 0.0;
+  /// wheel_radius_m: only the mass scaled by them is observable from traction pairs. The
+  /// defaults are typical (an ECU's torque signal within 5 %, a dynamic radius within 2 %); 0
+  /// declares it exact. They widen the 95 % interval (Estimate::mass_model_std_kg).
+  double wheel_torque_accuracy_fraction = 0.05;
+  double wheel_radius_accuracy_fraction = 0.02;
   /// Body pitch per longitudinal acceleration (a kinematics-and-compliance value): a body-fixed
   /// accelerometer tilts with the body and reads changes of a_x (1 + g k) too large, 1.7 % per
   /// deg/g. Unknown on most cars: the default is typical of passenger cars, and the estimator's

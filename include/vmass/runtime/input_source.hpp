@@ -55,7 +55,8 @@ struct InputRecord {
 /// Latest value, time and validity of every input of a samples CSV (trivially copyable).
 struct InputValues {
   Sample latest;  ///< values and validity bits of the latest update of each input
-  TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};  ///< -1: never
+  TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1,
+                                       -1, -1, -1, -1, -1, -1};  ///< -1: never
   TimeUs last_update_us = -1;  ///< time of the latest record applied (input clock)
   std::uint64_t updates = 0;   ///< records applied
 };
