@@ -28,6 +28,12 @@ std::string samples_csv_column(Input in) {
       return "rear_right_deflection_m";
     case Input::kGear:
       return "gear";
+    case Input::kBrakeSwitch:
+      return "brake_switch";
+    case Input::kEngineTorque:
+      return "engine_torque_nm";
+    case Input::kEngineSpeed:
+      return "engine_speed_radps";
     case Input::kCount:
       break;
   }

@@ -113,6 +113,7 @@ std::uint64_t state_fingerprint(const PipelineParams& p) {
   const VehicleParams& v = p.vehicle;
   const SuspensionParams& s = p.suspension;
   std::string text = std::string(regressor_type_name(p.estimator.type));
+  put(&text, "x", s.carries_load() ? 1.0 : 0.0);
   for (double x : {v.empty_mass_kg, v.wheelbase_m, v.cg_to_front_axle_m, v.gravity_mps2,
                    s.stiffness_n_per_m, s.empty_deflection_m, s.progressive_knee_m,
                    s.progressive_rate_n_per_m2, s.linear_range_kg, s.calibrated_range_kg}) {

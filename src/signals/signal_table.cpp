@@ -134,7 +134,7 @@ Sample SignalTable::sample_at(TimeUs now_us) {
     slot.fresh = fresh;
     if (!fresh || !good || !std::isfinite(value)) continue;
     const auto input = static_cast<Input>(i);
-    if (input == Input::kGear) {
+    if (input == Input::kGear || input == Input::kBrakeSwitch) {
       if (!(std::abs(value) < 1000.0)) continue;
       value = std::nearbyint(value);
     }

@@ -74,7 +74,9 @@ TEST_F(SignalTableTest, UnitsConvertToSi) {
   send("Level", {{"Page", 1.0}, {"LevelRR", 23.45}}, 1000);
   send("Level", {{"Page", 0.0}, {"Gear", -1.0}}, 1000);
   const Sample s = table_.sample_at(2000);
-  EXPECT_EQ(s.valid, kAllInputs & ~input_bit(Input::kAccelY));
+  // All but a_y and the stand-ins this bus does not carry (brake switch, engine torque and speed).
+  EXPECT_EQ(s.valid, kAllInputs & ~input_bit(Input::kAccelY) & ~input_bit(Input::kBrakeSwitch) &
+                         ~input_bit(Input::kEngineTorque) & ~input_bit(Input::kEngineSpeed));
   EXPECT_NEAR(s.speed_mps, 25.0, 1e-12);                            // 90 km/h
   EXPECT_NEAR(s.wheel_torque_nm, 100.0 + 2.0 * 50.0 + 5.0, 1e-12);  // sum with gain + offset
   EXPECT_NEAR(s.brake_pressure_pa, 2.5e6, 1e-6);                    // 2500 kPa

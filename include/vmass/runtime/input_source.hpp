@@ -56,11 +56,12 @@ struct InputRecord {
 /// Latest value, time and validity of every input of a samples CSV (trivially copyable).
 struct InputValues {
   Sample latest;  ///< values and validity bits of the latest update of each input
-  TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1, -1, -1, -1};  ///< -1: never
+  TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1,
+                                       -1, -1, -1, -1, -1, -1};  ///< -1: never
   TimeUs last_update_us = -1;  ///< time of the latest record applied (input clock)
   std::uint64_t updates = 0;   ///< records applied
 };
-static_assert(kInputCount == 9, "update InputValues::input_time_us's initialiser");
+static_assert(kInputCount == 12, "update InputValues::input_time_us's initialiser");
 
 /// Per-input timeouts (microseconds) of a samples CSV.
 struct InputTimeouts {
