@@ -7,12 +7,9 @@
 // with a warning. After the text, a finishing pass attaches multiplexing, checks every signal
 // against its message and applies attribute defaults.
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "vmass/can/dbc.hpp"
+#include "vmass/io/regular_file.hpp"
 
 #include "dbc_parser.hpp"
 
@@ -42,7 +39,8 @@ int Database::find_message(std::string_view message_name) const {
 }
 
 std::string DbcDiagnostic::to_string() const {
-  std::string s = file + ":" + std::to_string(line);
+  std::string s = file;
+  if (line > 0) s += ":" + std::to_string(line);
   if (column > 0) s += ":" + std::to_string(column);
   s += severity == Severity::kError ? ": error: " : ": warning: ";
   s += message;
@@ -92,16 +90,15 @@ DbcParseResult parse_dbc(std::string_view text, std::string_view file,
 }
 
 DbcParseResult load_dbc_file(const std::string& path, const DbcParseOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const io::FileText file = io::read_regular_file(path, io::kMaxDbcBytes, "DBC");
+  if (!file.ok()) {
     DbcParseResult result;
+    // "path: cannot open|read the DBC: why": the diagnostic adds the path itself.
     result.diagnostics.push_back(
-        {Severity::kError, path, 0, 0, std::string("cannot open: ") + std::strerror(errno)});
+        {Severity::kError, path, 0, 0, file.error.substr(path.size() + 2)});
     return result;
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_dbc(ss.str(), path, options);
+  return parse_dbc(file.text, path, options);
 }
 
 }  // namespace vmass::can

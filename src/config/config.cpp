@@ -1,10 +1,8 @@
 #include "vmass/config/config.hpp"
 
-#include <fstream>
-#include <sstream>
-
 #include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
+#include "vmass/io/regular_file.hpp"
 
 namespace vmass {
 namespace {
@@ -169,18 +167,16 @@ std::string Config::resolve_path(const std::string& path) const {
 }
 
 ConfigLoad load_config(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const io::FileText text = io::read_regular_file(path, io::kMaxConfigBytes, "config");
+  if (!text.ok()) {
     ConfigLoad out;
-    out.error = path + ": cannot open the config file";
+    out.error = text.error;
     return out;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   const auto slash = path.find_last_of('/');
   const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash);
   try {
-    return parse(YAML::Load(text.str()), path, directory);
+    return parse(YAML::Load(text.text), path, directory);
   } catch (const YAML::Exception& e) {
     ConfigLoad out;
     out.error = path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;

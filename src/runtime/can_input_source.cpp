@@ -5,7 +5,9 @@ namespace vmass::runtime {
 CanInputSource::CanInputSource(std::unique_ptr<FrameSource> frames,
                                std::shared_ptr<const can::Decoder> decoder,
                                const signals::SignalMapping& mapping)
-    : frames_(std::move(frames)), table_(std::move(decoder), mapping) {}
+    : frames_(std::move(frames)),
+      table_(std::move(decoder), mapping),
+      guarded_(frames_->recorded()) {}
 
 void CanInputSource::sync_counters() {
   counters_.dropped.store(frames_->dropped(), std::memory_order_relaxed);
@@ -13,8 +15,35 @@ void CanInputSource::sync_counters() {
 }
 
 InputSource::Read CanInputSource::read(int timeout_ms) {
+  for (;;) {
+    if (guarded_ && guard_.pop(&frame_, ended_)) {
+      publish_clock_counters(guard_.counters());
+      return Read::kRecord;
+    }
+    if (ended_) {
+      publish_clock_counters(guard_.counters());
+      const std::string problem = frames_->problem();
+      set_health(SourceState::kEnded, problem.empty() ? "end of " + frames_->describe() : problem);
+      return Read::kEnd;
+    }
+    can::CanFrame raw;
+    const Read r = read_frame(&raw, timeout_ms);
+    if (r == Read::kEnd) {
+      ended_ = true;
+    } else if (r != Read::kRecord) {
+      return r;
+    } else if (guarded_) {
+      guard_.push(raw);
+    } else {
+      frame_ = raw;  // a live bus: the daemon stamps its frames into the tick clock
+      return Read::kRecord;
+    }
+  }
+}
+
+InputSource::Read CanInputSource::read_frame(can::CanFrame* frame, int timeout_ms) {
   const std::int64_t malformed_before = frames_->malformed();
-  const FrameSource::Read r = frames_->read(&frame_, timeout_ms);
+  const FrameSource::Read r = frames_->read(frame, timeout_ms);
   const std::int64_t bad_records = frames_->malformed() - malformed_before;
   if (bad_records > 0) {
     counters_.received.fetch_add(bad_records, std::memory_order_relaxed);
@@ -32,10 +61,13 @@ InputSource::Read CanInputSource::read(int timeout_ms) {
       set_health(SourceState::kDown, frames_->problem());
       return Read::kDown;
     case FrameSource::Read::kEnd:
-      set_health(SourceState::kEnded, "end of " + frames_->describe());
       return Read::kEnd;
   }
   return Read::kTimeout;
+}
+
+std::string CanInputSource::read_error() const {
+  return frames_->recorded() ? frames_->problem() : std::string();
 }
 
 void CanInputSource::fetch(InputRecord* record) const {

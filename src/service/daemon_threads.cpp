@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "daemon_clock.hpp"
+#include "publish_backoff.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/service/state_store.hpp"
 
@@ -59,18 +60,18 @@ void push_input(const runtime::InputRecord& record, Shared& shared, bool block) 
   }
 }
 
-/// CLOCK_REALTIME and CLOCK_MONOTONIC read together: the pair of the tightest of up to three
-
 /// A live frame's time in the tick clock: its kernel stamp (CLOCK_REALTIME) moved by the tick
 /// clock's offset from CLOCK_REALTIME now. A stamp older than 1 s or in the future means the
 /// wall clock was stepped (or the frame has no stamp): then the time it was read. So the
 /// inputs' ages and timeouts never depend on CLOCK_REALTIME steps, which are common on a
-/// vehicle PC that sets its clock after boot (GNSS, NTP).
-TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan) {
+/// vehicle PC that sets its clock after boot (GNSS, NTP). Such a stamp is counted as a time jump.
+TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan, Shared& shared) {
   const ClockPair now = read_clocks();
   const TimeUs tick_clock_us = plan.t0_us + (now.mono_ns - plan.mono0_ns) / 1000;
   const TimeUs waited = now.realtime_us - kernel_stamp_us;
-  return (waited >= 0 && waited <= 1'000'000) ? tick_clock_us - waited : tick_clock_us;
+  if (waited >= 0 && waited <= 1'000'000) return tick_clock_us - waited;
+  shared.live_clock_steps.fetch_add(1, std::memory_order_relaxed);  // a time jump, bounded
+  return tick_clock_us;
 }
 
 /// A recording: the first record is already fetched (its time is T_0); records are pushed when
@@ -99,7 +100,7 @@ void receive_live(runtime::InputSource& source, Shared& shared, const Plan& plan
     switch (source.read(100)) {
       case runtime::InputSource::Read::kRecord:
         source.fetch(&record);
-        record.time_us = live_time_us(record.time_us, plan);
+        record.time_us = live_time_us(record.time_us, plan, shared);
         push_input(record, shared, false);
         break;
       case runtime::InputSource::Read::kTimeout:
@@ -308,6 +309,12 @@ DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stoppi
   s.timing = shared.timing.read();
   s.timing.ticks = shared.heartbeat.load(std::memory_order_acquire);  // fresher than the summary
   s.publish_queue_drops = shared.queue_drops.load(std::memory_order_relaxed);
+  s.publish_failures = shared.publish_failures.load(std::memory_order_relaxed);
+  const runtime::SourceCounters& c = ctx.source->counters();
+  s.frames_reordered = c.reordered.load(std::memory_order_relaxed);
+  s.frames_late_dropped = c.late_dropped.load(std::memory_order_relaxed);
+  s.time_jumps = c.time_jumps.load(std::memory_order_relaxed) +
+                 shared.live_clock_steps.load(std::memory_order_relaxed);
   s.state_saves = shared.state_saves.load(std::memory_order_relaxed);
   s.state_restored = ctx.state_restored;
   const runtime::SourceHealth health = ctx.source->health();
@@ -329,20 +336,31 @@ void publisher_thread(LcmPublisher& publisher, Shared& shared, const StatusConte
                       double status_period_s) {
   const auto period_ns = static_cast<std::int64_t>(status_period_s * 1e9);
   std::int64_t next_status = mono_ns() + period_ns;
+  PublishBackoff backoff(publisher.url());
+  // One message (a tick's estimate and pairs, or the status), unless backing off.
+  auto send = [&](auto&& publish) {
+    const std::int64_t now = mono_ns();
+    if (backoff.try_now(now)) backoff.record(publish(), now);
+    shared.publish_failures.store(backoff.failures(), std::memory_order_relaxed);
+    shared.published.store(backoff.published(), std::memory_order_relaxed);
+  };
   runtime::TickRecord record;
+  auto drain = [&] {
+    while (shared.queue.pop(&record)) send([&] { return publisher.on_tick(record); });
+  };
   for (;;) {
     const std::int64_t wait_until = std::min(next_status, mono_ns() + kPollNs);
     const timespec ts = to_timespec(wait_until);
     sem_clockwait(&shared.queue_sem, CLOCK_MONOTONIC, &ts);
-    while (shared.queue.pop(&record)) publisher.on_tick(record);
+    drain();
     const std::int64_t now = mono_ns();
     if (now >= next_status) {
-      publisher.publish_status(gather_status(ctx, shared, false));
+      send([&] { return publisher.publish_status(gather_status(ctx, shared, false)); });
       next_status += period_ns;
       if (next_status <= now) next_status = now + period_ns;
     }
     if (shared.stop_publisher.load(std::memory_order_acquire)) {
-      while (shared.queue.pop(&record)) publisher.on_tick(record);
+      drain();
       return;
     }
   }

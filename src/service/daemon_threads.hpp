@@ -49,10 +49,13 @@ struct Shared {
   SpscQueue<runtime::TickRecord> queue;      ///< estimator -> publisher
   sem_t queue_sem;
   std::atomic<std::int64_t> queue_drops{0};
-  runtime::SeqLock<runtime::TickRecord> latest;  ///< estimator -> main, publisher (status)
-  runtime::SeqLock<TickTimingSummary> timing;    ///< estimator -> status
-  runtime::SeqLock<SnapshotSlot> snapshot;       ///< estimator -> main (persistence)
-  std::atomic<std::int64_t> heartbeat{0};        ///< ticks run (watchdog evidence)
+  std::atomic<std::int64_t> publish_failures{0};  ///< publisher: messages not published
+  std::atomic<std::int64_t> published{0};         ///< publisher: messages published
+  std::atomic<std::int64_t> live_clock_steps{0};  ///< receive: live stamps off the tick clock
+  runtime::SeqLock<runtime::TickRecord> latest;   ///< estimator -> main, publisher (status)
+  runtime::SeqLock<TickTimingSummary> timing;     ///< estimator -> status
+  runtime::SeqLock<SnapshotSlot> snapshot;        ///< estimator -> main (persistence)
+  std::atomic<std::int64_t> heartbeat{0};         ///< ticks run (watchdog evidence)
   std::atomic<std::int64_t> state_saves{0};
   std::atomic<bool> input_ended{false};
   std::atomic<std::int64_t> late_records{0};  ///< applied after the tick they belonged to

@@ -73,7 +73,7 @@ TEST(Config, BadEstimatorTypeAndBadYaml) {
   EXPECT_EQ(y.error.rfind("broken.yaml:", 0), 0u) << y.error;
   const ConfigLoad f = load_config("/nonexistent/vmass.yaml");
   ASSERT_FALSE(f.ok());
-  EXPECT_EQ(f.error, "/nonexistent/vmass.yaml: cannot open the config file");
+  EXPECT_EQ(f.error, "/nonexistent/vmass.yaml: cannot open the config: No such file or directory");
 }
 
 TEST(Config, DifferencingStepMustBeWholeTicks) {

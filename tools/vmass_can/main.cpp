@@ -22,6 +22,7 @@
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
 #include "vmass/can/socketcan.hpp"
+#include "vmass/io/regular_file.hpp"
 
 namespace {
 
@@ -140,9 +141,14 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
   std::ifstream file;
   std::istream* in = &std::cin;
   if (!log.empty() && log != "-") {
-    file.open(log);
+    const std::string why = vmass::io::check_input_file(log, true);
+    if (!why.empty()) {
+      std::cerr << log << ": cannot open the log: " << why << "\n";
+      return vmass::tools::kExitUsage;
+    }
+    file.open(log, std::ios::binary);
     if (!file) {
-      std::cerr << log << ": cannot open\n";
+      std::cerr << log << ": cannot open the log\n";
       return vmass::tools::kExitUsage;
     }
     in = &file;
@@ -220,7 +226,11 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
             << stats.unknown_id << " unknown id, " << stats.too_short << " too short, "
             << stats.remote << " remote, " << stats.error_frames << " error frames, " << cs.corrupt
             << " corrupt lines\n";
-  return 0;
+  if (!reader.read_error().empty()) {
+    std::cerr << reader.read_error() << "\n";
+    return vmass::tools::kExitFailure;
+  }
+  return vmass::tools::kExitOk;
 }
 
 int run_dump(const std::string& iface, long count, double idle_timeout_s, const std::string& dbc) {

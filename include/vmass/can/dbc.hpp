@@ -118,7 +118,7 @@ struct DbcDiagnostic {
   int column = 0;  ///< 1-based byte column, 0 when the whole statement is meant
   std::string message;
 
-  /// "file:line:column: error: message" (column left out when 0).
+  /// "file:line:column: error: message" (column left out when 0, line too: the whole file).
   std::string to_string() const;
 };
 

@@ -11,7 +11,7 @@
 // frames to the reader's corrupt records. A frame is decoded at the record's time (the log time
 // of a recording; a live bus's frames are re-stamped into the daemon's tick clock by the reading
 // thread), which is what makes `vmassd --replay LOG --speed max` and `vmass-replay --log LOG`
-// identical.
+// identical. A recording's frames pass a ClockGuard first (reorder window, bounded jumps).
 //
 // Thread-safety: as InputSource.
 #pragma once
@@ -21,6 +21,7 @@
 #include <string>
 
 #include "vmass/can/decoder.hpp"
+#include "vmass/runtime/clock_guard.hpp"
 #include "vmass/runtime/frame_source.hpp"
 #include "vmass/runtime/input_source.hpp"
 #include "vmass/signals/signal_table.hpp"
@@ -45,6 +46,7 @@ class CanInputSource final : public InputSource {
   }
   std::string input_report() const override;
 
+  std::string read_error() const override;
   bool recorded() const override { return frames_->recorded(); }
   std::string describe() const override { return frames_->describe(); }
 
@@ -53,10 +55,16 @@ class CanInputSource final : public InputSource {
 
  private:
   void sync_counters();
+  /// One frame from the FrameSource, counted.
+  Read read_frame(can::CanFrame* frame, int timeout_ms);
 
   std::unique_ptr<FrameSource> frames_;
   signals::SignalTable table_;
-  can::CanFrame frame_;  ///< reading thread
+  // Reading thread:
+  can::CanFrame frame_;
+  bool guarded_;  ///< a recording: its frames go through the clock guard
+  ClockGuard<can::CanFrame> guard_;
+  bool ended_ = false;
 };
 
 }  // namespace vmass::runtime

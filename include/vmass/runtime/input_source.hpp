@@ -2,9 +2,10 @@
 // that touch it:
 //
 //   reading thread    read() fetches the next record and says when it describes (input clock:
-//                     log time for recordings, the tick clock for a live bus); fetch() copies it
-//                     into an InputRecord, which goes to the estimator thread through an SPSC
-//                     queue (the split lets the daemon pace a recording by its log time)
+//                     log time for recordings, in time order and with bounded jumps (a
+//                     ClockGuard), the tick clock for a live bus); fetch() copies it into an
+//                     InputRecord, which goes to the estimator thread through an SPSC queue (the
+//                     split lets the daemon pace a recording by its log time)
 //   estimator thread  apply() folds records into the source's input table; at each tick
 //                     sample_at(T) turns the table into the tick's Sample and input_age_us()
 //                     says how old each input is
@@ -37,6 +38,7 @@
 
 #include "vmass/can/can_frame.hpp"
 #include "vmass/core/sample.hpp"
+#include "vmass/runtime/clock_guard.hpp"
 #include "vmass/runtime/seqlock.hpp"
 
 namespace vmass::runtime {
@@ -81,6 +83,10 @@ struct SourceCounters {
   std::atomic<std::int64_t> dropped{0};     ///< frames dropped by the kernel (SO_RXQ_OVFL)
   std::atomic<std::int64_t> bus_errors{0};  ///< CAN error frames
   std::atomic<std::int64_t> reopens{0};     ///< successful re-opens after the input was lost
+  // A recording's clock (ClockGuard; reading thread).
+  std::atomic<std::int64_t> reordered{0};     ///< records put back in time order
+  std::atomic<std::int64_t> late_dropped{0};  ///< records too late for the reorder window
+  std::atomic<std::int64_t> time_jumps{0};    ///< clock jumps re-based, stray stamps dropped
 };
 
 enum class SourceState : std::uint8_t {
@@ -125,6 +131,10 @@ class InputSource {
   /// for the end of a run (after the estimator thread stopped).
   virtual std::string input_report() const { return ""; }
 
+  // ---------------------------------------------------------------- once reading stopped
+  /// Why a recording ended early ("path: read error: ..."), "" after a clean end.
+  virtual std::string read_error() const { return ""; }
+
   // ---------------------------------------------------------------- any thread
   /// A recording (paced by its own time stamps) rather than a live bus.
   virtual bool recorded() const = 0;
@@ -137,6 +147,7 @@ class InputSource {
  protected:
   /// Reading thread only.
   void set_health(SourceState state, const std::string& detail);
+  void publish_clock_counters(const ClockCounters& c);
 
   SourceCounters counters_;
 
