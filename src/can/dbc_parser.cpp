@@ -63,19 +63,61 @@ namespace dbc_detail {
 
 void Parser::run() {
   if (s_.size() >= 3 && s_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;  // UTF-8 byte order mark
-  while (!failed_) {
+  if (!is_text()) return;
+  while (!stopped_) {
     skip_ws();
     if (eof()) break;
     statement_line_ = line_;
     const char c = peek();
     if (!is_word_char(c)) {
       fail("expected a keyword (VERSION, BO_, SG_, CM_, ...)");
-      break;
+    } else {
+      statement(read_word());
     }
-    const std::string_view kw = read_word();
-    statement(kw);
+    if (failed_) recover();
   }
-  finish();  // also after an error: what was loaded is checked and stays consistent
+  finish();  // also after errors: what was loaded is checked and stays consistent
+  if (db_.messages.empty() && out_.error_count() == 0) {
+    deviation(0, "no message (BO_) in the file");
+  }
+}
+
+bool Parser::is_text() {
+  const std::size_t nul = s_.find('\0');
+  if (nul != std::string_view::npos) {
+    const int line = 1 + static_cast<int>(std::count(s_.begin(), s_.begin() + nul, '\n'));
+    error_at(line, "binary data (a NUL byte): not a DBC file");
+    return false;
+  }
+  std::size_t i = pos_;
+  while (i < s_.size() && (s_[i] == ' ' || s_[i] == '\t' || s_[i] == '\r' || s_[i] == '\n')) ++i;
+  if (i == s_.size()) {
+    error_at(0, "empty file: not a DBC file");
+    return false;
+  }
+  return true;
+}
+
+void Parser::recover() {
+  failed_ = false;
+  if (++errors_recovered_ >= kMaxErrors) {
+    error_at(line_, "too many errors (" + std::to_string(kMaxErrors) +
+                        "); the rest of the file is not read");
+    stopped_ = true;
+    return;
+  }
+  // The statement is abandoned: on to the next line that starts with a keyword.
+  skip_rest_of_line();
+  while (!eof()) {
+    const std::size_t line_begin = pos_;
+    skip_blanks();
+    const std::size_t word_begin = pos_;
+    const std::string_view word = read_word();
+    pos_ = word_begin;
+    if (is_keyword(word)) return;
+    pos_ = line_begin;
+    skip_rest_of_line();
+  }
 }
 
 }  // namespace dbc_detail

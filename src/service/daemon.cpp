@@ -25,6 +25,7 @@
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/service/state_plausibility.hpp"
 #include "vmass/service/state_store.hpp"
 #include "vmass/service/stop_signals.hpp"
 #include "vmass/service/systemd_notifier.hpp"
@@ -172,6 +173,11 @@ bool restore_state(const std::string& path, std::uint64_t fingerprint, Pipeline&
   const StateLoad state = load_state_file(path, fingerprint);
   if (state.status == StateLoadStatus::kRejected) spdlog::warn("{}; starting fresh", state.error);
   if (state.status != StateLoadStatus::kLoaded) return false;
+  const std::string implausible = implausible_state(state.state.snapshot, pipeline.params());
+  if (!implausible.empty()) {
+    spdlog::warn("{}: saved state not believable ({}); starting fresh", path, implausible);
+    return false;
+  }
   if (!pipeline.restore(state.state.snapshot)) {
     spdlog::warn("{}: saved state refused by the estimator; starting fresh", path);
     return false;

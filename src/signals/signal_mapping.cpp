@@ -6,12 +6,20 @@
 
 #include "vmass/can/dbc.hpp"
 #include "vmass/config/yaml_reader.hpp"
+#include "vmass/io/excerpt.hpp"
 #include "vmass/signals/units.hpp"
 
 namespace vmass::signals {
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s) { return "'" + io::excerpt(s) + "'"; }
+
+/// Messages of the DBC named `name` (a DBC from many hands may name two alike).
+int count_named(const can::Database& db, const std::string& name) {
+  int n = 0;
+  for (const can::Message& m : db.messages) n += m.name == name;
+  return n;
+}
 
 std::string input_names() {
   std::string s;
@@ -78,6 +86,11 @@ MappedSignal parse_term(YamlReader& t, const TermContext& ctx) {
            "no message " + quoted(out.message) + " in " + ctx.dbc_name +
                case_hint(db.messages, out.message, [](const can::Message& x) { return x.name; }));
   }
+  if (count_named(db, out.message) > 1) {
+    t.fail("message", quoted(out.message) + " names " +
+                          std::to_string(count_named(db, out.message)) + " messages in " +
+                          ctx.dbc_name + ": rename them in the DBC");
+  }
   const can::Message& msg = db.messages[static_cast<std::size_t>(m)];
   const int s = msg.find_signal(out.signal);
   if (s < 0) {
@@ -88,6 +101,10 @@ MappedSignal parse_term(YamlReader& t, const TermContext& ctx) {
   const can::Signal& sig = msg.signals[static_cast<std::size_t>(s)];
   out.ref = can::SignalRef{m, s};
   const std::string what = out.message + "." + out.signal;
+  if (sig.factor == 0.0) {
+    t.fail("signal", what + " has factor 0 in " + ctx.dbc_name +
+                         ": its value is always its offset; fix the DBC");
+  }
 
   // Multiplexing: the page must be named, and must select the signal.
   const bool has_mux = t.has("mux");
