@@ -97,6 +97,7 @@ YamlReader::YamlReader(YAML::Node node, std::string file, std::string path)
 int YamlReader::line_of(const YAML::Node& n) const { return n.Mark().line + 1; }
 
 std::string YamlReader::full_key(const std::string& key) const {
+  if (key.empty()) return path_;  // the section itself
   return path_.empty() ? key : path_ + "." + key;
 }
 

@@ -139,8 +139,16 @@ void publish_record(const runtime::TickRecord& record, Shared& shared, bool bloc
   sem_post(&shared.queue_sem);
 }
 
-void after_tick(const runtime::TickRecord& record, runtime::TickStep& step, Shared& shared,
-                const Plan& plan, TickStats& stats, std::int64_t k) {
+/// The source's input health for the status (allocates nothing; about 4 KB copied).
+void publish_health(const runtime::InputSource& source, Shared& shared) {
+  runtime::InputHealthRecord health;
+  source.health_record(&health);
+  shared.health.write(health);
+}
+
+void after_tick(const runtime::TickRecord& record, runtime::TickStep& step,
+                const runtime::InputSource& source, Shared& shared, const Plan& plan,
+                TickStats& stats, std::int64_t k) {
   publish_record(record, shared, plan.recorded);
   shared.latest.write(record);
   shared.heartbeat.store(k + 1, std::memory_order_release);
@@ -149,6 +157,9 @@ void after_tick(const runtime::TickRecord& record, runtime::TickStep& step, Shar
   }
   if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz)) == 0) {
     shared.timing.write(stats.summary());
+  }
+  if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz / 10.0)) == 0) {
+    publish_health(source, shared);  // 10 times a second: the status is read once a second
   }
 }
 
@@ -163,7 +174,7 @@ std::int64_t run_log_time(runtime::InputSource& source, runtime::TickStep& step,
     stats.on_unpaced_tick();
     const runtime::TickRecord& record = step.tick(k, t, source);
     stats.on_done(mono_ns() - start, false);
-    after_tick(record, step, shared, plan, stats, k);
+    after_tick(record, step, source, shared, plan, stats, k);
   });
   if (!run.any_record) spdlog::warn("{}: no records", source.describe());
   shared.input_ended.store(true, std::memory_order_release);
@@ -257,7 +268,7 @@ std::int64_t run_paced(runtime::InputSource& source, runtime::TickStep& step, Sh
     ++k;
     const std::int64_t next_deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
     stats.on_done(done - wake, done > next_deadline);
-    after_tick(record, step, shared, plan, stats, k - 1);
+    after_tick(record, step, source, shared, plan, stats, k - 1);
     // A live bus after a long stall (suspend, debugger): give the missed ticks up, counted,
     // after 1 s. A recording never skips: a replay the machine cannot keep up with runs late
     // (overruns counted) and still gives the offline estimates.
@@ -290,12 +301,34 @@ void estimator_thread(runtime::InputSource& source, runtime::TickStep& step, Sha
                                             : run_paced(source, step, shared, plan, stats);
   // Final state for the main thread (status, persistence).
   shared.timing.write(stats.summary());
+  publish_health(source, shared);
   shared.snapshot.write(
       SnapshotSlot{step.pipeline().snapshot(), step.last().estimate.time_us, ticks > 0});
   shared.estimator_done.store(plan.recorded && shared.input_ended.load());
 }
 
 // --------------------------------------------------------------------------- status and publisher
+
+void copy_input_health(const runtime::InputSource& source, const runtime::InputHealthRecord& h,
+                       DaemonStatus* s) {
+  for (int i = 0; i < kInputCount; ++i) {
+    const runtime::InputHealthRecord::InputEntry& e = h.inputs[static_cast<std::size_t>(i)];
+    InputHealth& out = s->inputs[static_cast<std::size_t>(i)];
+    out.stale = e.stale;
+    out.invalid = e.invalid;
+    out.implausible = e.implausible;
+    out.counter_fail = e.counter_fail;
+    out.checksum_fail = e.checksum_fail;
+    out.reason = signals::describe(e.verdict, source.message_name(e.verdict.message));
+  }
+  s->messages.clear();
+  for (int k = 0; k < h.message_count; ++k) {
+    const runtime::InputHealthRecord::MessageEntry& m = h.messages[static_cast<std::size_t>(k)];
+    s->messages.push_back(MessageHealth{source.message_name(m.message), m.valid, m.counter_fail,
+                                        m.checksum_fail, m.too_fast, m.too_long});
+  }
+  s->bus_valid = h.bus_valid;
+}
 
 DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stopping) {
   DaemonStatus s;
@@ -317,6 +350,7 @@ DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stoppi
                  shared.live_clock_steps.load(std::memory_order_relaxed);
   s.state_saves = shared.state_saves.load(std::memory_order_relaxed);
   s.state_restored = ctx.state_restored;
+  copy_input_health(*ctx.source, shared.health.read(), &s);
   const runtime::SourceHealth health = ctx.source->health();
   s.detail = health.detail;
   if (stopping) {

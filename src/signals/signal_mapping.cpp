@@ -294,6 +294,10 @@ CanInputsLoad load_can_inputs(const Config& config) {
     std::string dbc;
     r.require("dbc", &dbc);
     const YAML::Node inputs = r.raw("inputs");
+    const YAML::Node e2e = r.raw("e2e");
+    const YAML::Node plausibility = r.raw("plausibility");
+    bool enforce_dbc_ranges = false;
+    r.read("enforce_dbc_ranges", &enforce_dbc_ranges);
     r.reject_unknown_keys();
 
     CanInputs result;
@@ -312,11 +316,17 @@ CanInputsLoad load_can_inputs(const Config& config) {
     std::optional<can::Decoder> decoder = can::Decoder::compile(std::move(parsed.database), &error);
     if (!decoder) r.fail("dbc", result.dbc_path + ": " + error);
     result.decoder = std::make_shared<const can::Decoder>(std::move(*decoder));
-    error = parse_signal_mapping(inputs, config.file, *result.decoder, dbc, &result.mapping);
+    SignalMapping& mapping = result.mapping;
+    error = parse_signal_mapping(inputs, config.file, *result.decoder, dbc, &mapping);
+    if (error.empty()) {
+      error = parse_message_protection(e2e, config.file, *result.decoder, dbc, &mapping.protection);
+    }
+    if (error.empty()) error = parse_plausibility(plausibility, config.file, &mapping.plausibility);
     if (!error.empty()) {
       out.error = error;
       return out;
     }
+    mapping.enforce_dbc_ranges = enforce_dbc_ranges;
     out.inputs = std::move(result);
   } catch (const ConfigError& e) {
     out.error = e.what();

@@ -39,6 +39,7 @@
 #include "vmass/can/can_frame.hpp"
 #include "vmass/core/sample.hpp"
 #include "vmass/runtime/clock_guard.hpp"
+#include "vmass/runtime/input_health.hpp"
 #include "vmass/runtime/seqlock.hpp"
 
 namespace vmass::runtime {
@@ -130,6 +131,8 @@ class InputSource {
   /// Per-input problems seen so far ("speed 2 stale, 1 invalid; ..."), "" when none. Allocates:
   /// for the end of a run (after the estimator thread stopped).
   virtual std::string input_report() const { return ""; }
+  /// The inputs' health at the latest tick (counts, verdicts, CAN messages). Allocates nothing.
+  virtual void health_record(InputHealthRecord* /*out*/) const {}
 
   // ---------------------------------------------------------------- once reading stopped
   /// Why a recording ended early ("path: read error: ..."), "" after a clean end.
@@ -140,6 +143,8 @@ class InputSource {
   virtual bool recorded() const = 0;
   /// E.g. "samples:drive.csv", "replay:drive.log", "socketcan:can0".
   virtual std::string describe() const = 0;
+  /// The name of a CAN message of InputHealthRecord::MessageEntry ("" for other sources).
+  virtual std::string message_name(int /*message*/) const { return ""; }
 
   const SourceCounters& counters() const { return counters_; }
   SourceHealth health() const { return health_.read(); }
