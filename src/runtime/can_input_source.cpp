@@ -17,7 +17,7 @@ void CanInputSource::sync_counters() {
   counters_.reopens.store(frames_->reopens(), std::memory_order_relaxed);
 }
 
-InputSource::Read CanInputSource::read(int timeout_ms) {
+InputSource::Read CanInputSource::next_record(int timeout_ms) {
   for (;;) {
     if (guarded_ && guard_.pop(&frame_, ended_)) {
       publish_clock_counters(guard_.counters());
@@ -73,7 +73,7 @@ std::string CanInputSource::read_error() const {
   return frames_->recorded() ? frames_->problem() : std::string();
 }
 
-void CanInputSource::fetch(InputRecord* record) const {
+void CanInputSource::copy_record(InputRecord* record) const {
   record->time_us = frame_.time_us;
   record->frame = frame_;
 }

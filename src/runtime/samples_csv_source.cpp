@@ -17,7 +17,7 @@ std::unique_ptr<SamplesCsvSource> SamplesCsvSource::open(const std::string& path
   return source;
 }
 
-InputSource::Read SamplesCsvSource::read(int /*timeout_ms*/) {
+InputSource::Read SamplesCsvSource::next_record(int /*timeout_ms*/) {
   for (;;) {
     if (guard_.pop(&record_, ended_)) {
       publish_clock_counters(guard_.counters());
@@ -45,7 +45,7 @@ InputSource::Read SamplesCsvSource::read(int /*timeout_ms*/) {
   }
 }
 
-void SamplesCsvSource::fetch(InputRecord* record) const {
+void SamplesCsvSource::copy_record(InputRecord* record) const {
   record->time_us = record_.time_us;
   record->sample = record_;
 }

@@ -142,7 +142,91 @@ int run_check(const std::string& dbc, bool strict) {
   return r.ok() && compiles ? vmass::tools::kExitOk : vmass::tools::kExitUsage;
 }
 
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
+/// One decoded frame as a JSON object (a line).
+void append_json(std::string& out, const Decoder& decoder, const Message& msg,
+                 const CandumpRecord& rec) {
+  out += "{\"time_s\": ";
+  append_time(out, rec.frame.time_us);
+  out += ", \"id\": ";
+  out += std::to_string(rec.frame.id);
+  out += ", \"message\": \"";
+  out += json_escape(msg.name);
+  out += "\", \"signals\": {";
+  bool first = true;
+  decoder.decode(rec.frame, [&](int i, double v) {
+    if (!first) out += ", ";
+    first = false;
+    out += '"';
+    out += json_escape(msg.signals[static_cast<std::size_t>(i)].name);
+    out += "\": ";
+    append_number(out, v);
+  });
+  out += "}}\n";
+}
+
+/// One decoded frame as cantools decode prints it: the candump line, then the signals (value
+/// descriptions for integer signals that have one, else the value and the unit).
+void append_text(std::string& out, const Decoder& decoder, const Message& msg,
+                 const CandumpRecord& rec) {
+  std::string line = format_candump_line(rec.frame, rec.interface);
+  line.pop_back();
+  out += line + " :: " + msg.name + "(";
+  bool first = true;
+  decoder.decode(rec.frame, [&](int i, double v) {
+    const Signal& s = msg.signals[static_cast<std::size_t>(i)];
+    if (!first) out += ", ";
+    first = false;
+    out += s.name + ": ";
+    const double raw = std::round((v - s.offset) / s.factor);
+    const ValueDescription* choice = nullptr;
+    for (const ValueDescription& vd : s.values) {
+      if (static_cast<double>(vd.value) == raw) choice = &vd;
+    }
+    if (choice != nullptr && s.value_type == ValueType::kInteger) {
+      out += "'" + choice->text + "'";
+    } else {
+      append_number(out, v);
+      if (!s.unit.empty()) out += " " + s.unit;
+    }
+  });
+  out += ")\n";
+}
+
+/// Decodes every frame of the log to stdout; undecodable frames are echoed (text) or left out
+/// (JSON), too-short ones reported.
+DecodeStats decode_frames(CandumpReader& reader, const Decoder& decoder, bool json) {
+  const Database& db = decoder.database();
+  DecodeStats stats;
+  CandumpRecord rec;
+  std::string out;
+  out.reserve(4096);
+  while (reader.next(&rec)) {
+    int m = -1;
+    out.clear();
+    const DecodeStatus st = decoder.classify(rec.frame, &m);
+    stats.count(st);
+    if (st != DecodeStatus::kOk) {
+      if (st == DecodeStatus::kTooShort) {
+        std::cerr << reader.source() << ":" << reader.line_number() << ": frame "
+                  << db.messages[static_cast<std::size_t>(m)].name << " has " << int(rec.frame.len)
+                  << " bytes, the DBC says " << db.messages[static_cast<std::size_t>(m)].length
+                  << ": rejected\n";
+      }
+      if (!json) std::cout << format_candump_line(rec.frame, rec.interface);
+      continue;
+    }
+    const Message& msg = db.messages[static_cast<std::size_t>(m)];
+    if (json) {
+      append_json(out, decoder, msg, rec);
+    } else {
+      append_text(out, decoder, msg, rec);
+    }
+    std::cout << out;
+  }
+  std::cout.flush();
+  return stats;
+}
+
 int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
   bool dbc_errors = false;
   auto decoder = load_decoder(dbc, strict, json, &dbc_errors);
@@ -164,72 +248,7 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
   }
   CandumpReader reader(*in, log.empty() ? "stdin" : log);
   reader.on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
-  const Database& db = decoder->database();
-  DecodeStats stats;
-  CandumpRecord rec;
-  std::string out;
-  out.reserve(4096);
-  while (reader.next(&rec)) {
-    int m = -1;
-    out.clear();
-    const DecodeStatus st = decoder->classify(rec.frame, &m);
-    stats.count(st);
-    if (st != DecodeStatus::kOk) {
-      if (st == DecodeStatus::kTooShort) {
-        std::cerr << reader.source() << ":" << reader.line_number() << ": frame "
-                  << db.messages[static_cast<std::size_t>(m)].name << " has " << int(rec.frame.len)
-                  << " bytes, the DBC says " << db.messages[static_cast<std::size_t>(m)].length
-                  << ": rejected\n";
-      }
-      if (!json) std::cout << format_candump_line(rec.frame, rec.interface);
-      continue;
-    }
-    const Message& msg = db.messages[static_cast<std::size_t>(m)];
-    if (json) {
-      out += "{\"time_s\": ";
-      append_time(out, rec.frame.time_us);
-      out += ", \"id\": ";
-      out += std::to_string(rec.frame.id);
-      out += ", \"message\": \"";
-      out += json_escape(msg.name);
-      out += "\", \"signals\": {";
-      bool first = true;
-      decoder->decode(rec.frame, [&](int i, double v) {
-        if (!first) out += ", ";
-        first = false;
-        out += '"';
-        out += json_escape(msg.signals[static_cast<std::size_t>(i)].name);
-        out += "\": ";
-        append_number(out, v);
-      });
-      out += "}}\n";
-    } else {
-      std::string line = format_candump_line(rec.frame, rec.interface);
-      line.pop_back();
-      out += line + " :: " + msg.name + "(";
-      bool first = true;
-      decoder->decode(rec.frame, [&](int i, double v) {
-        const Signal& s = msg.signals[static_cast<std::size_t>(i)];
-        if (!first) out += ", ";
-        first = false;
-        out += s.name + ": ";
-        const double raw = std::round((v - s.offset) / s.factor);
-        const ValueDescription* choice = nullptr;
-        for (const ValueDescription& vd : s.values) {
-          if (static_cast<double>(vd.value) == raw) choice = &vd;
-        }
-        if (choice != nullptr && s.value_type == ValueType::kInteger) {
-          out += "'" + choice->text + "'";
-        } else {
-          append_number(out, v);
-          if (!s.unit.empty()) out += " " + s.unit;
-        }
-      });
-      out += ")\n";
-    }
-    std::cout << out;
-  }
-  std::cout.flush();
+  const DecodeStats stats = decode_frames(reader, *decoder, json);
   const CandumpStats& cs = reader.stats();
   std::cerr << "vmass-can decode: " << cs.frames << " frames, " << stats.decoded << " decoded, "
             << stats.unknown_id << " unknown id, " << stats.too_short << " too short, "
