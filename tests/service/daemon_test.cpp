@@ -354,6 +354,63 @@ TEST_F(DaemonTest, SigkillMidDriveThenRestartResumesFromSavedState) {
 }
 
 // A bad config is refused with file:line:key and exit code 2; an unknown CLI combination too.
+// A state file damaged on disk (cut short, a byte changed) or believable to its checksum only
+// (a mass of -5000 kg): vmassd says why, starts fresh (not restored), exits 0, and its final
+// save replaces the file with one that loads.
+TEST_F(DaemonTest, DamagedStateFilesAreRefusedWithTheirReasonAndReplaced) {
+  const std::string config = write_config("");
+  const std::string good = path("good.state");
+  ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                " --speed max --lcm-url memq:// --state-file " + good + " 2> " + path("good.log")),
+            0)
+      << read("good.log");
+  const ConfigLoad c = load_config(config);
+  ASSERT_TRUE(c.ok());
+  const std::uint64_t fingerprint = service::state_fingerprint(c.config->pipeline);
+  const service::StateLoad saved = service::load_state_file(good, fingerprint);
+  ASSERT_EQ(saved.status, service::StateLoadStatus::kLoaded) << saved.error;
+  const std::string text = read("good.state");
+  std::string garbled = text;
+  const std::size_t digit = garbled.find_first_of("123456789", garbled.size() / 2);
+  ASSERT_NE(digit, std::string::npos);
+  garbled[digit] = garbled[digit] == '9' ? '1' : static_cast<char>(garbled[digit] + 1);
+  service::SavedState absurd = saved.state;
+  absurd.snapshot.nig_mean[0] = -5000.0;  // the test config's estimator is Bayes
+  const std::string absurd_text = service::format_state(absurd);
+
+  struct Case {
+    const char* name;
+    std::string contents;
+    std::string reason;
+  };
+  const Case cases[] = {
+      {"truncated", text.substr(0, text.size() / 2), "no checksum line (truncated file?)"},
+      {"garbled", garbled, "checksum mismatch (corrupt file)"},
+      {"implausible", absurd_text,
+       "saved state not believable (Bayes mass -5000 kg outside [750, 7500] kg)"},
+  };
+  for (const Case& k : cases) {
+    const std::string state = path(std::string(k.name) + ".state");
+    const std::string log = path(std::string(k.name) + ".log");
+    const std::string lcm_log = path(std::string(k.name) + ".lcm");
+    ASSERT_TRUE(test::write_text(state, k.contents));
+    EXPECT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                  " --speed max --lcm-url 'file://" + lcm_log + "?mode=w' --state-file " + state +
+                  " 2> " + log),
+              0)
+        << k.name << ": " << read(std::string(k.name) + ".log");
+    const std::string out = read(std::string(k.name) + ".log");
+    EXPECT_NE(out.find(k.reason), std::string::npos) << k.name << ": " << out;
+    EXPECT_NE(out.find("starting fresh"), std::string::npos) << k.name << ": " << out;
+    const LoggedRun run_log = read_lcm_log(lcm_log);
+    ASSERT_FALSE(run_log.statuses.empty()) << k.name;
+    EXPECT_FALSE(run_log.statuses.back().state_restored) << k.name;
+    const service::StateLoad after = service::load_state_file(state, fingerprint);
+    EXPECT_EQ(after.status, service::StateLoadStatus::kLoaded) << k.name << ": " << after.error;
+    EXPECT_GT(after.state.snapshot.nig_mean[0], 1000.0) << k.name;
+  }
+}
+
 TEST_F(DaemonTest, RefusesToStartOnConfigErrors) {
   const std::string config = write_config("lcm:\n  estimate_chanel: X\n");
   EXPECT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
