@@ -1,6 +1,7 @@
 // The recording's clock guard (runtime::ClockGuard): records put back in time order within the
-// window, too-late ones dropped, one stray stamp dropped, a clock that jumps forward or back
-// re-based with a bounded gap; every case counted. Then through a candump log: one frame stamped
+// window, too-late ones dropped, one stray stamp dropped (far away, or just ahead: then it
+// alone is lost), a gap in the bus kept, a clock that jumps forward or back re-based with a
+// bounded gap; every case counted. Then through a candump log: one frame stamped
 // 3 years ahead no longer makes the tick driver tick through 1e10 empty ticks.
 #include "vmass/runtime/clock_guard.hpp"
 
@@ -134,6 +135,46 @@ std::string write_temp(const std::string& text) {
 // A frame of Speeds (0x100) at `time` carrying 36 km/h.
 std::string speed_line(const char* time) {
   return std::string("(") + time + ") can0 100#100E000000000000\n";
+}
+
+TEST(ClockGuard, ARecordStampedAheadCostsItselfNotTheRecordsBehindIt) {
+  // Two frames of a slow message swapped in the log: the later one (tag 99, 140 ms ahead) comes
+  // first. Before: it became the newest, and the records behind it were too late (dropped).
+  Guard guard;
+  std::vector<Rec> in;
+  for (int k = 0; k < 5; ++k) in.push_back({k * 10'000, k});
+  in.push_back({180'000, 99});
+  for (int k = 5; k < 20; ++k) in.push_back({k * 10'000, k});
+  const std::vector<Rec> out = run(guard, in);
+  std::vector<int> expected;
+  for (int k = 0; k < 20; ++k) expected.push_back(k);
+  EXPECT_EQ(tags(out), expected);  // the early one dropped, nothing else
+  EXPECT_EQ(guard.counters().time_jumps, 1);
+  EXPECT_EQ(guard.counters().late_dropped, 0);
+}
+
+TEST(ClockGuard, AGapLongerThanTheWindowLosesNothing) {
+  // The bus quiet for 300 ms, and once for 2 s at the very end: every record kept, in order,
+  // at its own time.
+  Guard guard;
+  const std::vector<Rec> out =
+      run(guard, {{0, 0}, {10'000, 1}, {310'000, 2}, {315'000, 3}, {312'000, 4}, {2'320'000, 5}});
+  EXPECT_EQ(tags(out), (std::vector<int>{0, 1, 2, 4, 3, 5}));
+  EXPECT_EQ(out.back().time_us, 2'320'000);
+  EXPECT_EQ(guard.counters().time_jumps, 0);
+  EXPECT_EQ(guard.counters().late_dropped, 0);
+  EXPECT_EQ(guard.counters().reordered, 1);
+}
+
+TEST(ClockGuard, ARecordAfterAGapThatTheNextOvertakesIsTakenForAStray) {
+  // The price of dropping early strays: the first record after a gap, overtaken by the next,
+  // looks like one (lost, counted); the records after it are kept.
+  Guard guard;
+  const std::vector<Rec> out =
+      run(guard, {{0, 0}, {10'000, 1}, {310'000, 2}, {305'000, 3}, {320'000, 4}});
+  EXPECT_EQ(tags(out), (std::vector<int>{0, 1, 3, 4}));
+  EXPECT_EQ(guard.counters().time_jumps, 1);
+  EXPECT_EQ(guard.counters().late_dropped, 0);
 }
 
 TEST(ClockGuard, AFrameStampedYearsAheadNoLongerHangsTheTickDriver) {

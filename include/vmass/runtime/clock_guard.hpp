@@ -8,6 +8,15 @@
 //
 //   t in [newest - window, newest)     held and put in order      (counted: reordered)
 //   t < newest - window, within bound  too late: dropped          (counted: late_dropped)
+//   t in (newest + window,             early: held as a candidate until the next record decides:
+//         newest + kForwardJumpUs]         the next is at or after it -> accepted (a gap in the
+//                                          bus: nothing lost)
+//                                          the next is before it -> a stray stamp ahead: dropped
+//                                          (counted: time_jumps), so that one early record (two
+//                                          frames of a slow message swapped in the log) costs
+//                                          itself, not every record behind it; the price: a
+//                                          record right after a gap that the next one overtakes
+//                                          is taken for a stray too
 //   t beyond newest + kForwardJumpUs   off the timeline: the record is held as a candidate
 //   or before newest - kBackJumpUs     until the next one decides (counted: time_jumps):
 //       the next continues the old timeline  -> the candidate was a stray stamp: dropped
@@ -56,12 +65,14 @@ class ClockGuard {
     if (has_candidate_ && !resolve_candidate(record.time_us)) {
       candidate_ = record;  // off both timelines: it is the one to decide on now
       has_candidate_ = true;
+      candidate_early_ = false;
       return;
     }
     const TimeUs t = record.time_us + offset_;
-    if (!near(t, newest_)) {
+    if (!near(t, newest_) || t > newest_ + kWindowUs) {
       candidate_ = record;
       has_candidate_ = true;
+      candidate_early_ = near(t, newest_);
       return;
     }
     if (t < newest_ - kWindowUs) {
@@ -74,9 +85,13 @@ class ClockGuard {
   /// The next record in time order whose place is settled; with `flush` (the input ended)
   /// every held one. False when none is ready.
   bool pop(Record* out, bool flush) {
-    if (flush && has_candidate_) {  // nothing follows it: a stray stamp
+    if (flush && has_candidate_) {  // nothing follows it: early records are kept, strays not
       has_candidate_ = false;
-      ++counters_.time_jumps;
+      if (candidate_early_) {
+        accept(candidate_, candidate_.time_us + offset_);
+      } else {
+        ++counters_.time_jumps;
+      }
     }
     if (size_ == 0) return false;
     Record& front = ring_[head_];
@@ -133,6 +148,16 @@ class ClockGuard {
   /// when it is on neither: the candidate was a stray, and so may the record be.
   bool resolve_candidate(TimeUs next_raw_us) {
     has_candidate_ = false;
+    if (candidate_early_) {
+      const TimeUs candidate_t = candidate_.time_us + offset_;
+      const TimeUs next_t = next_raw_us + offset_;
+      if (next_t >= candidate_t && near(next_t, candidate_t)) {
+        accept(candidate_, candidate_t);  // the bus went on from it: a gap, nothing lost
+        return true;
+      }
+      ++counters_.time_jumps;  // a stray stamp ahead: dropped
+      return near(next_t, newest_);
+    }
     ++counters_.time_jumps;
     if (near(next_raw_us + offset_, newest_)) return true;  // the candidate was a stray stamp
     const TimeUs candidate_raw = candidate_.time_us;
@@ -150,6 +175,7 @@ class ClockGuard {
   TimeUs offset_ = 0;
   Record candidate_{};
   bool has_candidate_ = false;
+  bool candidate_early_ = false;  ///< ahead within kForwardJumpUs (else off the timeline)
   ClockCounters counters_;
 };
 
