@@ -1,10 +1,9 @@
 #include "vmass/config/config.hpp"
 
-#include <fstream>
-#include <sstream>
-
 #include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
+#include "vmass/config/yaml_tree.hpp"
+#include "vmass/io/regular_file.hpp"
 
 namespace vmass {
 namespace {
@@ -189,9 +188,38 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
   r.reject_unknown_keys();
 }
 
+/// PipelineParams::validate()'s "key what; key what" as "file:line: key: what" lines, the line
+/// being where the key is written (or its section, for a key left at its default).
+std::string located(const std::string& invalid, const YAML::Node& root, const std::string& file) {
+  std::string out;
+  std::size_t begin = 0;
+  while (begin < invalid.size()) {
+    std::size_t end = invalid.find("; ", begin);
+    if (end == std::string::npos) end = invalid.size();
+    const std::string one = invalid.substr(begin, end - begin);
+    const std::size_t space = one.find(' ');
+    std::string key = one.substr(0, space);
+    int line = line_of_key(root, key);
+    // The estimator's sub-sections name their keys from the section down ("rls.forgetting_factor").
+    if (line == 0 && line_of_key(root, "estimator." + key) > 0) {
+      key = "estimator." + key;
+      line = line_of_key(root, key);
+    }
+    if (!out.empty()) out += "\n";
+    out += file + (line > 0 ? ":" + std::to_string(line) : "") + ": " + key + ":" +
+           (space == std::string::npos ? "" : one.substr(space));
+    begin = end + 2;
+  }
+  return out;
+}
+
 ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::string& directory) {
   ConfigLoad out;
   try {
+    if (std::string duplicate = duplicate_key_error(root, file); !duplicate.empty()) {
+      out.error = std::move(duplicate);
+      return out;
+    }
     Config c;
     c.file = file;
     c.directory = directory;
@@ -207,7 +235,7 @@ ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::str
     top.reject_unknown_keys();
     const std::string invalid = c.pipeline.validate();
     if (!invalid.empty()) {
-      out.error = file + ": " + invalid;
+      out.error = located(invalid, root, file);
       return out;
     }
     out.config = std::move(c);
@@ -227,18 +255,16 @@ std::string Config::resolve_path(const std::string& path) const {
 }
 
 ConfigLoad load_config(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const io::FileText text = io::read_regular_file(path, io::kMaxConfigBytes, "config");
+  if (!text.ok()) {
     ConfigLoad out;
-    out.error = path + ": cannot open the config file";
+    out.error = text.error;
     return out;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   const auto slash = path.find_last_of('/');
   const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash);
   try {
-    return parse(YAML::Load(text.str()), path, directory);
+    return parse(YAML::Load(text.text), path, directory);
   } catch (const YAML::Exception& e) {
     ConfigLoad out;
     out.error = path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;

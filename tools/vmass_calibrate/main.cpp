@@ -35,6 +35,8 @@
 #include "vmass/calibrate/plateau_detector.hpp"
 #include "vmass/calibrate/suspension_fit.hpp"
 #include "vmass/config/config.hpp"
+#include "vmass/io/line_reader.hpp"
+#include "vmass/io/regular_file.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_table.hpp"
@@ -70,9 +72,11 @@ std::string shell_quote(const std::string& s) {
 
 // True when the file's first meaningful line is a candump -l record "(seconds) iface id#data".
 bool looks_like_candump(const std::string& path) {
+  if (!vmass::io::check_input_file(path, false).empty()) return false;  // the reader says why
   std::ifstream in(path);
+  vmass::io::LineReader lines(in, 4096);
   std::string line;
-  while (std::getline(in, line)) {
+  while (lines.next(&line)) {
     const auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos) continue;
     return line[first] == '(' && line.find('#') != std::string::npos;
@@ -115,6 +119,7 @@ std::string read_log_series(const std::string& path, const vmass::Config& config
     if (s.has(vmass::Input::kSpeed)) p.speed_mps = s.speed_mps;
     series->push_back(p);
   });
+  if (const std::string failed = source.read_error(); !failed.empty()) return failed;
   const auto& c = source.table().counters();
   char buf[200];
   std::snprintf(buf, sizeof buf,

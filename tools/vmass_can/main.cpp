@@ -6,8 +6,9 @@
 //                                                     print frames from SocketCAN as candump -l
 //
 // Exit codes (tools/common/exit_code.hpp): 0 ok; 1 failure (SocketCAN cannot be opened, dump
-// got fewer than --count frames before the idle timeout); 2 usage or input error (a DBC with
-// errors, or with deviations under --strict; a log that cannot be opened).
+// got fewer than --count frames before the idle timeout, a read error in the log); 2 usage or
+// input error (a DBC with errors, or with deviations under --strict: check reports every one,
+// decode decodes with what loaded and still exits 2; a log that cannot be opened).
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
@@ -22,6 +23,7 @@
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
 #include "vmass/can/socketcan.hpp"
+#include "vmass/io/regular_file.hpp"
 
 namespace {
 
@@ -69,18 +71,25 @@ void append_time(std::string& out, std::int64_t time_us) {
   out += buf;
 }
 
-std::optional<Decoder> load_decoder(const std::string& path, bool strict, bool quiet_warnings) {
+/// The DBC compiled for decoding; *had_errors when it loaded only in part (what loaded is still
+/// decoded, and the run then exits 2).
+std::optional<Decoder> load_decoder(const std::string& path, bool strict, bool quiet_warnings,
+                                    bool* had_errors) {
   DbcParseOptions opt;
   opt.strict = strict;
   DbcParseResult r = load_dbc_file(path, opt);
   for (const DbcDiagnostic& d : r.diagnostics) {
     if (d.severity == Severity::kError || !quiet_warnings) std::cerr << d.to_string() << "\n";
   }
-  if (r.diagnostics.size() == 1 && r.diagnostics[0].line == 0) return std::nullopt;  // unreadable
+  if (r.diagnostics.size() == 1 && r.diagnostics[0].line == 0 &&
+      r.diagnostics[0].severity == Severity::kError) {
+    return std::nullopt;  // unreadable, empty
+  }
+  *had_errors = !r.ok();
   if (!r.ok()) {
     if (strict) return std::nullopt;
     std::cerr << path << ": " << r.error_count()
-              << " error(s); decoding with what could be loaded\n";
+              << " error(s); decoding with what could be loaded (exit code 2)\n";
   }
   std::string error;
   auto d = Decoder::compile(std::move(r.database), &error);
@@ -219,14 +228,20 @@ DecodeStats decode_frames(CandumpReader& reader, const Decoder& decoder, bool js
 }
 
 int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
-  auto decoder = load_decoder(dbc, strict, json);
+  bool dbc_errors = false;
+  auto decoder = load_decoder(dbc, strict, json, &dbc_errors);
   if (!decoder) return vmass::tools::kExitUsage;
   std::ifstream file;
   std::istream* in = &std::cin;
   if (!log.empty() && log != "-") {
-    file.open(log);
+    const std::string why = vmass::io::check_input_file(log, true);
+    if (!why.empty()) {
+      std::cerr << log << ": cannot open the log: " << why << "\n";
+      return vmass::tools::kExitUsage;
+    }
+    file.open(log, std::ios::binary);
     if (!file) {
-      std::cerr << log << ": cannot open\n";
+      std::cerr << log << ": cannot open the log\n";
       return vmass::tools::kExitUsage;
     }
     in = &file;
@@ -239,7 +254,12 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
             << stats.unknown_id << " unknown id, " << stats.too_short << " too short, "
             << stats.remote << " remote, " << stats.error_frames << " error frames, " << cs.corrupt
             << " corrupt lines\n";
-  return 0;
+  if (dbc_errors) return vmass::tools::kExitUsage;
+  if (!reader.read_error().empty()) {
+    std::cerr << reader.read_error() << "\n";
+    return vmass::tools::kExitFailure;
+  }
+  return vmass::tools::kExitOk;
 }
 
 int run_dump(const std::string& iface, long count, double idle_timeout_s, const std::string& dbc) {

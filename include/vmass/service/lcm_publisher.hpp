@@ -98,6 +98,7 @@ class LcmPublisher {
   bool publish_status(const DaemonStatus& status);
 
   std::int64_t estimates_published() const { return estimates_; }
+  const std::string& url() const { return settings_.url; }
   std::int64_t publish_failures() const { return failures_; }
 
  private:
