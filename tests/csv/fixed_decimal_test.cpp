@@ -60,7 +60,8 @@ TEST(FixedDecimal, MatchesPrintfOnTheValuesOurFilesHold) {
   EXPECT_EQ(mismatches(1'000'000, 3, [&] { return mass(rng); }), 0);
   EXPECT_EQ(mismatches(1'000'000, 5, [&] { return fraction(rng); }), 0);
   std::int64_t time_us = 0;  // tick times in seconds, %.2f
-  EXPECT_EQ(mismatches(1'000'000, 2, [&] { return static_cast<double>(time_us += 10'000) * 1e-6; }), 0);
+  EXPECT_EQ(mismatches(1'000'000, 2, [&] { return static_cast<double>(time_us += 10'000) * 1e-6; }),
+            0);
 }
 
 TEST(FixedDecimal, RoundsExactTiesToEvenAsPrintfDoes) {
