@@ -16,9 +16,8 @@ constexpr double kExactScaledLimit = 4503599627370496.0;
 /// scale) < 2^52.
 std::uint64_t round_scaled(double magnitude, double scale, double scaled) {
   const double error = std::fma(magnitude, scale, -scaled);  // exact: scaled's rounding error
-  const double floor = std::floor(scaled);
-  const double above_half = (scaled - floor) - 0.5;  // exact, a multiple of ulp(scaled)
-  const auto n = static_cast<std::uint64_t>(floor);
+  const auto n = static_cast<std::uint64_t>(scaled);         // floor: scaled >= 0
+  const double above_half = (scaled - static_cast<double>(n)) - 0.5;  // exact, k ulp(scaled)
   const bool up =
       above_half > 0.0 || (above_half == 0.0 && (error > 0.0 || (error == 0.0 && (n & 1u) != 0)));
   return up ? n + 1 : n;

@@ -11,7 +11,7 @@
 //     round up  <=>  (s - n) - 1/2 > 0,  or it is 0 and (e > 0, or e == 0 and n is odd)
 // because s - n - 1/2 is exact and a multiple of ulp(s), while |e| <= ulp(s) / 2. Other values
 // (huge, non-finite) go through std::to_chars(fixed, decimals) itself, which is also exact but
-// about 7 times slower in libstdc++ 12 (measured in docs/performance.md).
+// 2-3 times slower in libstdc++ 12 (vmass-bench format/*, docs/performance.md).
 //
 // Thread-safe (pure functions).
 #pragma once
