@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 namespace vmass::can {
@@ -145,6 +146,30 @@ int open_can_socket(const SocketCanOptions& options, std::string* error) {
   return fd;
 }
 
+/// Room for a batch of records and their control messages, reused for every recvmmsg.
+struct SocketCanReader::Batch {
+  static constexpr int kRecords = 32;
+  static constexpr std::size_t kControlBytes = CMSG_SPACE(sizeof(scm_timestamping)) +
+                                               CMSG_SPACE(sizeof(timeval)) +
+                                               CMSG_SPACE(sizeof(std::uint32_t)) + 64;
+  alignas(canfd_frame) unsigned char data[kRecords][sizeof(canfd_frame) + 8];
+  alignas(cmsghdr) unsigned char control[kRecords][kControlBytes];
+  iovec iov[kRecords];
+  mmsghdr msgs[kRecords];
+
+  /// Resets the headers the kernel writes into (lengths, flags).
+  void prepare() {
+    for (int i = 0; i < kRecords; ++i) {
+      iov[i] = {data[i], sizeof data[i]};
+      msgs[i] = {};
+      msgs[i].msg_hdr.msg_iov = &iov[i];
+      msgs[i].msg_hdr.msg_iovlen = 1;
+      msgs[i].msg_hdr.msg_control = control[i];
+      msgs[i].msg_hdr.msg_controllen = kControlBytes;
+    }
+  }
+};
+
 std::unique_ptr<SocketCanReader> SocketCanReader::open(const SocketCanOptions& options,
                                                        std::string* error) {
   const int fd = open_can_socket(options, error);
@@ -156,7 +181,8 @@ std::unique_ptr<SocketCanReader> SocketCanReader::open(const SocketCanOptions& o
 
 SocketCanReader::SocketCanReader(int fd, Opener reopen, int reopen_initial_ms, int reopen_max_ms,
                                  RecvMsg recv)
-    : fd_(fd),
+    : batch_(std::make_unique<Batch>()),
+      fd_(fd),
       reopen_(std::move(reopen)),
       recv_(std::move(recv)),
       backoff_initial_ms_(std::max(1, reopen_initial_ms)),
@@ -171,78 +197,109 @@ void SocketCanReader::close_fd() {
   last_overflow_ = 0;
 }
 
-ReadStatus SocketCanReader::read(CanFrame* frame, int timeout_ms) {
-  const Clock::time_point deadline = Clock::now() + std::chrono::milliseconds(timeout_ms);
-  alignas(canfd_frame) unsigned char buf[sizeof(canfd_frame) + 8];
-  alignas(cmsghdr) unsigned char control[CMSG_SPACE(sizeof(scm_timestamping)) +
-                                         CMSG_SPACE(sizeof(timeval)) +
-                                         CMSG_SPACE(sizeof(std::uint32_t)) + 64];
-  while (true) {
-    const Clock::time_point now = Clock::now();
-    if (fd_ < 0) {
-      if (now >= next_reopen_ && reopen_) {
-        ++stats_.reopen_attempts;
-        std::string why;
-        fd_ = reopen_(&why);
-        if (fd_ >= 0) {
-          ++stats_.reopens;
-          backoff_ms_ = backoff_initial_ms_;
-          last_overflow_ = 0;
-          continue;
-        }
-        last_error_ = why;
-        next_reopen_ = now + std::chrono::milliseconds(backoff_ms_);
-        backoff_ms_ = std::min(backoff_ms_ * 2, backoff_max_ms_);
-      }
-      const Clock::time_point wake = reopen_ ? std::min(next_reopen_, deadline) : deadline;
-      if (wake > now) std::this_thread::sleep_for(wake - now);
-      if (Clock::now() >= deadline) return ReadStatus::kReopening;
+std::optional<ReadStatus> SocketCanReader::take_batched(CanFrame* frame) {
+  while (batch_next_ < batch_count_) {
+    const mmsghdr& m = batch_->msgs[batch_next_];
+    const unsigned char* data = batch_->data[batch_next_];
+    ++batch_next_;
+    if (m.msg_len == 0) {  // end of stream (a socketpair's peer closed): no CAN record is empty
+      batch_count_ = 0;
+      return ReadStatus::kClosed;
+    }
+    if (m.msg_hdr.msg_flags & MSG_TRUNC) {
+      ++stats_.malformed;
       continue;
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count();
+    if (handle_record(data, m.msg_len, &m.msg_hdr, frame) == ReadStatus::kFrame) {
+      return ReadStatus::kFrame;
+    }
+  }
+  return std::nullopt;
+}
+
+ReadStatus SocketCanReader::receive_error(int err) {
+  if (err == ENETDOWN) {
+    ++stats_.interface_down;
+    last_error_ = "interface is down; waiting for it to come back";
+    return ReadStatus::kInterfaceDown;
+  }
+  if (err == ENODEV || err == ENXIO) {
+    ++stats_.interface_gone;
+    close_fd();
+    backoff_ms_ = backoff_initial_ms_;
+    next_reopen_ = Clock::now() + std::chrono::milliseconds(backoff_ms_);
+    last_error_ = "interface vanished; re-creating the socket";
+    return ReadStatus::kInterfaceGone;
+  }
+  last_error_ = errno_text("recvmsg", err);
+  return ReadStatus::kError;
+}
+
+ReadStatus SocketCanReader::receive_batch() {
+  batch_->prepare();
+  batch_count_ = 0;
+  batch_next_ = 0;
+  long n = 0;
+  if (recv_) {  // the test seam: one record per call
+    n = recv_(fd_, &batch_->msgs[0].msg_hdr, MSG_DONTWAIT);
+    if (n >= 0) batch_->msgs[0].msg_len = static_cast<unsigned>(n);
+    if (n >= 0) n = 1;
+  } else {
+    n = ::recvmmsg(fd_, batch_->msgs, Batch::kRecords, MSG_DONTWAIT, nullptr);
+  }
+  if (n < 0) {
+    const int err = errno;
+    if (err == EINTR || err == EAGAIN || err == EWOULDBLOCK) return ReadStatus::kTimeout;
+    return receive_error(err);
+  }
+  batch_count_ = static_cast<int>(n);
+  return ReadStatus::kFrame;
+}
+
+std::optional<ReadStatus> SocketCanReader::wait_for_socket(Clock::time_point deadline) {
+  const Clock::time_point now = Clock::now();
+  if (now >= next_reopen_ && reopen_) {
+    ++stats_.reopen_attempts;
+    std::string why;
+    fd_ = reopen_(&why);
+    if (fd_ >= 0) {
+      ++stats_.reopens;
+      backoff_ms_ = backoff_initial_ms_;
+      last_overflow_ = 0;
+      return std::nullopt;
+    }
+    last_error_ = why;
+    next_reopen_ = now + std::chrono::milliseconds(backoff_ms_);
+    backoff_ms_ = std::min(backoff_ms_ * 2, backoff_max_ms_);
+  }
+  const Clock::time_point wake = reopen_ ? std::min(next_reopen_, deadline) : deadline;
+  if (wake > now) std::this_thread::sleep_for(wake - now);
+  if (Clock::now() >= deadline) return ReadStatus::kReopening;
+  return std::nullopt;
+}
+
+ReadStatus SocketCanReader::read(CanFrame* frame, int timeout_ms) {
+  const Clock::time_point deadline = Clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (;;) {
+    if (const std::optional<ReadStatus> st = take_batched(frame)) return *st;
+    if (fd_ < 0) {
+      if (const std::optional<ReadStatus> st = wait_for_socket(deadline)) return *st;
+      continue;
+    }
+    // Whatever is waiting first (on a busy bus there always is): no poll() then.
+    const ReadStatus got = receive_batch();
+    if (got == ReadStatus::kFrame) continue;
+    if (got != ReadStatus::kTimeout) return got;
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    if (left <= 0) return ReadStatus::kTimeout;
     pollfd p{fd_, POLLIN, 0};
-    const int pr = ::poll(&p, 1, left > 0 ? static_cast<int>(left) : 0);
-    if (pr < 0) {
-      if (errno == EINTR) continue;
+    const int pr = ::poll(&p, 1, static_cast<int>(left));
+    if (pr < 0 && errno != EINTR) {
       last_error_ = errno_text("poll", errno);
       return ReadStatus::kError;
     }
     if (pr == 0) return ReadStatus::kTimeout;
-
-    iovec iov{buf, sizeof buf};
-    msghdr msg{};
-    msg.msg_iov = &iov;
-    msg.msg_iovlen = 1;
-    msg.msg_control = control;
-    msg.msg_controllen = sizeof control;
-    const long n = recv_ ? recv_(fd_, &msg, MSG_DONTWAIT)
-                         : static_cast<long>(::recvmsg(fd_, &msg, MSG_DONTWAIT));
-    if (n < 0) {
-      const int err = errno;
-      if (err == EINTR || err == EAGAIN || err == EWOULDBLOCK) continue;
-      if (err == ENETDOWN) {
-        ++stats_.interface_down;
-        last_error_ = "interface is down; waiting for it to come back";
-        return ReadStatus::kInterfaceDown;
-      }
-      if (err == ENODEV || err == ENXIO) {
-        ++stats_.interface_gone;
-        close_fd();
-        backoff_ms_ = backoff_initial_ms_;
-        next_reopen_ = Clock::now() + std::chrono::milliseconds(backoff_ms_);
-        last_error_ = "interface vanished; re-creating the socket";
-        return ReadStatus::kInterfaceGone;
-      }
-      last_error_ = errno_text("recvmsg", err);
-      return ReadStatus::kError;
-    }
-    if (n == 0) return ReadStatus::kClosed;
-    if (msg.msg_flags & MSG_TRUNC) {
-      ++stats_.malformed;
-      continue;
-    }
-    const ReadStatus st = handle_record(buf, static_cast<std::size_t>(n), &msg, frame);
-    if (st == ReadStatus::kFrame) return st;
   }
 }
 

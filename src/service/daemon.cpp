@@ -1,5 +1,7 @@
 #include "vmass/service/daemon.hpp"
 
+#include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/mman.h>
 
@@ -109,7 +111,43 @@ struct OpenedInput {
   int exit_code = kExitOk;  ///< when source is null
 };
 
-/// --replay LOG or --can IFACE: frames through the config's can: mapping.
+/// --can IFACE: the interface's frames (its DBC ids only: kernel filters); --can-fd FD: the
+/// records of an inherited descriptor, every id (no filters: it need not be a CAN socket), never
+/// re-opened. Null (and *exit_code) when it cannot be opened.
+std::unique_ptr<runtime::FrameSource> open_socketcan(const DaemonOptions& options,
+                                                     const ServiceSettings& settings,
+                                                     const can::Database& db, int* exit_code) {
+  if (options.can_fd >= 0) {
+    if (::fcntl(options.can_fd, F_GETFD) < 0) {
+      spdlog::error("--can-fd {}: not an open descriptor", options.can_fd);
+      *exit_code = kExitUsage;
+      return nullptr;
+    }
+    auto reader =
+        std::make_unique<can::SocketCanReader>(options.can_fd, can::SocketCanReader::Opener{});
+    return std::make_unique<runtime::SocketCanFrameSource>(std::move(reader),
+                                                           "fd" + std::to_string(options.can_fd));
+  }
+  can::SocketCanOptions can_options;
+  can_options.interface =
+      options.can_interface.empty() ? settings.daemon.can_interface : options.can_interface;
+  can_options.filters = can::filters_for(db);
+  if (const std::string invalid = can_options.validate(); !invalid.empty()) {
+    spdlog::error("{}", invalid);
+    *exit_code = kExitUsage;
+    return nullptr;
+  }
+  std::string error;
+  std::unique_ptr<runtime::FrameSource> frames =
+      runtime::SocketCanFrameSource::open(can_options, &error);
+  if (!frames) {
+    spdlog::error("{}", error);
+    *exit_code = kExitFailure;
+  }
+  return frames;
+}
+
+/// --replay LOG, --can IFACE or --can-fd FD: frames through the config's can: mapping.
 OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
                            const ServiceSettings& settings) {
   signals::CanInputsLoad can = signals::load_can_inputs(config);
@@ -127,19 +165,9 @@ OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
       return {nullptr, kExitUsage};
     }
   } else {
-    can::SocketCanOptions can_options;
-    can_options.interface =
-        options.can_interface.empty() ? settings.daemon.can_interface : options.can_interface;
-    can_options.filters = can::filters_for(can.inputs->decoder->database());
-    if (const std::string invalid = can_options.validate(); !invalid.empty()) {
-      spdlog::error("{}", invalid);
-      return {nullptr, kExitUsage};
-    }
-    frames = runtime::SocketCanFrameSource::open(can_options, &error);
-    if (!frames) {
-      spdlog::error("{}", error);
-      return {nullptr, kExitFailure};
-    }
+    int exit_code = kExitOk;
+    frames = open_socketcan(options, settings, can.inputs->decoder->database(), &exit_code);
+    if (!frames) return {nullptr, exit_code};
   }
   return {std::make_unique<runtime::CanInputSource>(std::move(frames), can.inputs->decoder,
                                                     can.inputs->mapping),
@@ -250,7 +278,11 @@ Threads start_threads(runtime::InputSource& source, runtime::TickStep& step, Sha
   if (!plan.max_speed) {
     t.receive =
         std::thread(daemon::receive_thread, std::ref(source), std::ref(shared), std::cref(plan));
+    pthread_setname_np(t.receive.native_handle(), "vmassd-receive");
   }
+  // Named for top -H, perf and the performance suite's per-thread CPU (15 characters at most).
+  pthread_setname_np(t.publisher.native_handle(), "vmassd-publish");
+  pthread_setname_np(t.estimator.native_handle(), "vmassd-estimate");
   return t;
 }
 

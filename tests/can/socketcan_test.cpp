@@ -107,6 +107,29 @@ TEST(SocketCan, ReadsClassicFdExtendedRemoteAndErrorRecords) {
   EXPECT_EQ(reader.read(&f, 10), ReadStatus::kTimeout);
 }
 
+TEST(SocketCan, RecordsWaitingAreReadInBatchesInOrder) {
+  Pair p;
+  ASSERT_GE(p.reader, 0);
+  const int one = 1;
+  ASSERT_EQ(::setsockopt(p.reader, SOL_SOCKET, SO_TIMESTAMP, &one, sizeof one), 0);
+  SocketCanReader reader(p.reader, {});
+  CanFrame f;
+  EXPECT_EQ(reader.read(&f, 0), ReadStatus::kTimeout);  // nothing waiting: at once
+  for (std::uint8_t i = 0; i < 100; ++i) p.send_classic(0x100 + i, {i});  // > 3 batches
+  for (std::uint8_t i = 0; i < 100; ++i) {
+    ASSERT_EQ(reader.read(&f, 0), ReadStatus::kFrame) << "record " << int{i};
+    EXPECT_EQ(f.id, 0x100u + i);
+    ASSERT_EQ(f.len, 1);
+    EXPECT_EQ(f.data[0], i);
+  }
+  EXPECT_EQ(reader.read(&f, 0), ReadStatus::kTimeout);
+  EXPECT_EQ(reader.stats().frames, 100u);
+  EXPECT_EQ(reader.stats().no_kernel_timestamp, 0u);  // every record of a batch has its stamp
+  p.send_classic(0x7, {7});
+  ASSERT_EQ(reader.read(&f, 1000), ReadStatus::kFrame);  // after a wait
+  EXPECT_EQ(f.id, 0x7u);
+}
+
 TEST(SocketCan, WithoutKernelStampsFallsBackAndCounts) {
   Pair p;
   SocketCanReader reader(p.reader, {});

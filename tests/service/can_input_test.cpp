@@ -1,16 +1,21 @@
 // The daemon's CAN input path: frames from a candump log or a SocketCAN reader (through its fd
 // seam) decoded by the SignalTable of the config's can.inputs mapping; counters, values,
 // timeouts and ages checked against values computed here from the DBC's scale and unit.
+#include <fcntl.h>
 #include <linux/can.h>
+#include <signal.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
@@ -226,6 +231,87 @@ TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {
   std::ifstream err_file(dir / "err.txt");
   const std::string err((std::istreambuf_iterator<char>(err_file)), {});
   EXPECT_NE(err.find("speed <- SPEED.SPEED"), std::string::npos) << err;  // the mapping, logged
+  fs::remove_all(dir);
+}
+
+/// Runs `argv` with `fd` as its descriptor 3 and its standard error into `err`; the pid.
+pid_t spawn_with_fd3(const std::vector<std::string>& args, int fd, const std::string& err) {
+  const pid_t pid = ::fork();
+  if (pid != 0) return pid;
+  const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (e < 0 || ::dup2(e, STDERR_FILENO) < 0 || ::dup2(fd, 3) < 0) ::_exit(127);
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  ::execv(argv[0], argv.data());
+  ::_exit(127);
+}
+
+// vmassd --can-fd: the records of an inherited descriptor (a socketpair here, as the performance
+// suite's bus feed) go through the SocketCAN reader and the mapping; every id arrives (no kernel
+// filters), the unknown ones are counted; SIGTERM stops it cleanly. A descriptor that is not open
+// is a usage error.
+TEST(CanInputSource, VmassdReadsSocketCanRecordsFromAnInheritedDescriptor) {
+  const fs::path dir = fs::temp_directory_path() / ("vmassd_can_fd_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string config = (dir / "vmassd.yaml").string();
+  ASSERT_TRUE(test::write_text(
+      config,
+      test::test_config_yaml("can:\n  dbc: " + kDbc + "\n  inputs:\n    " + kSpeedMapping)));
+  const std::string out = (dir / "out.lcm").string();
+  const std::string err = (dir / "err.txt").string();
+  int fds[2];
+  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, fds), 0);
+  const pid_t pid = spawn_with_fd3({VMASSD_BIN, "--config", config, "--can-fd", "3", "--no-restore",
+                                    "--lcm-url", "file://" + out + "?mode=w"},
+                                   fds[1], err);
+  ASSERT_GT(pid, 0);
+  ::close(fds[1]);
+  can_frame f{};
+  f.can_dlc = 8;
+  for (int i = 0; i < 100; ++i) {  // 100 SPEED frames and 10 of an id not in the DBC, 1 s
+    f.can_id = 0xB4;
+    f.data[5] = 0x12;
+    f.data[6] = 0x34;
+    ASSERT_EQ(::write(fds[0], &f, sizeof f), static_cast<ssize_t>(sizeof f));
+    if (i % 10 == 0) {
+      f.can_id = 0x7FF;
+      ASSERT_EQ(::write(fds[0], &f, sizeof f), static_cast<ssize_t>(sizeof f));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ::close(fds[0]);
+  std::ifstream err_file(err);
+  const std::string err_text((std::istreambuf_iterator<char>(err_file)), {});
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << err_text;
+  lcm::LogFile file(out, "r");
+  vmass::status_t last;
+  long estimates = 0;
+  while (const lcm::LogEvent* ev = file.readNextEvent()) {
+    if (ev->channel == "VMASS_STATUS") {
+      ASSERT_EQ(last.decode(ev->data, 0, ev->datalen), ev->datalen);
+    }
+    estimates += ev->channel == "VMASS_ESTIMATE";
+  }
+  EXPECT_EQ(last.state_name, "stopping");
+  EXPECT_EQ(last.source, "socketcan:fd3");
+  EXPECT_EQ(last.frames_received, 110);
+  EXPECT_EQ(last.frames_decoded, 100);
+  EXPECT_EQ(last.frames_unknown, 10);
+  EXPECT_GT(estimates, 50);  // 100 Hz for about 1.3 s
+  EXPECT_NE(err_text.find("input socketcan:fd3"), std::string::npos) << err_text;
+
+  const int bad = std::system((std::string(VMASSD_BIN) + " --config " + config +
+                               " --can-fd 987 --no-restore --lcm-url memq:// 2> " + err)
+                                  .c_str());
+  EXPECT_TRUE(WIFEXITED(bad) && WEXITSTATUS(bad) == 2);
+  std::ifstream bad_err(err);
+  const std::string bad_text((std::istreambuf_iterator<char>(bad_err)), {});
+  EXPECT_NE(bad_text.find("--can-fd 987: not an open descriptor"), std::string::npos) << bad_text;
   fs::remove_all(dir);
 }
 

@@ -1,8 +1,10 @@
 // vmass-replay: drive the estimation pipeline offline over recorded samples or a CAN log, at
-// the configured tick rate, and report how it did.
+// the configured tick rate, and report how it did; or over many logs at once.
 //
 //   vmass-replay --config FILE (--samples CSV | --log LOG) [--truth CSV]
 //                [--estimator rls|bayes] [--out CSV] [--plot PNG] [--json]
+//   vmass-replay --config FILE (--logs PATH... | --log-list FILE) [--jobs N] [--out-dir DIR]
+//                [--estimator rls|bayes] [--json]
 //
 // The recording ticks through vmass_runtime exactly as in vmassd (runtime::TickDriver on the
 // tick grid T_k = T_0 + k / tick_rate_hz in log time, T_0 the first record's time; tick k sees
@@ -12,21 +14,32 @@
 // --truth is read only when given, and refused (exit 2) when its time base is not the input's
 // (Truth::check_time_base). At the end the open Bayes batch is flushed into the final estimate
 // the summary prints. Records out of time order are put back in order within 50 ms, clock
-// jumps bounded (runtime::ClockGuard); the counts are reported. Exit codes
-// (tools/common/exit_code.hpp): 0 ok, 1 read error in the input, write or plot failure, 2 usage,
-// config or input error.
+// jumps bounded (runtime::ClockGuard); the counts are reported.
+// --logs (files, or folders of *.log files) and --log-list (one path per line) replay many
+// logs of one vehicle with the same config, --jobs at a time (default: every core), each as
+// --log would; stdout gets one summary table, a CSV row per log (fleet_table.hpp) or with
+// --json a JSON line per log, in the order the logs were named; --out-dir writes each log's
+// estimate CSV as DIR/<stem>.csv. Exit codes (tools/common/exit_code.hpp): 0 ok, 1 read error in
+// the input, write or plot failure (many logs: any log that could not be replayed or written),
+// 2 usage, config or input error.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
 #include "exit_code.hpp"
+#include "fleet_replay.hpp"
+#include "fleet_table.hpp"
+#include "replay_run.hpp"
 #include "replay_summary.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/csv/estimate_csv.hpp"
@@ -44,28 +57,58 @@ namespace {
 
 struct Options {
   std::string config_path, samples_path, log_path, truth_path, out_path, plot_path, estimator;
+  std::vector<std::string> logs;  ///< --logs: many logs (files or folders)
+  std::string log_list, out_dir;
+  int jobs = 0;  ///< 0: every core
   bool json = false;
+  bool many() const { return !logs.empty() || !log_list.empty(); }
   const std::string& input_path() const { return log_path.empty() ? samples_path : log_path; }
 };
 
+/// --logs and --log-list, and what goes with them only.
+void add_many_logs_options(CLI::App& app, Options* o, CLI::Option* single_inputs[3]) {
+  auto* logs = app.add_option("--logs", o->logs,
+                              "many logs of one vehicle: candump -l files, or folders of *.log");
+  auto* list = app.add_option("--log-list", o->log_list, "a file naming one log per line");
+  app.add_option("--jobs", o->jobs, "logs replayed at once (default: every core)")
+      ->check(CLI::Range(1, 4096));
+  app.add_option("--out-dir", o->out_dir, "write each log's estimate CSV as DIR/<stem>.csv");
+  for (CLI::Option* many : {logs, list}) {
+    for (int i = 0; i < 3; ++i) many->excludes(single_inputs[i]);
+  }
+}
+
 std::optional<int> parse_options(int argc, char** argv, Options* o) {
-  CLI::App app{"vmass-replay: run the mass estimator offline over recorded samples or a CAN log"};
+  CLI::App app{"vmass-replay: run the mass estimator offline over recorded samples or CAN logs"};
   app.add_option("--config", o->config_path, "vmass YAML config")->required();
   auto* samples = app.add_option("--samples", o->samples_path, "samples CSV (docs/formats.md)");
   auto* log = app.add_option("--log", o->log_path,
                              "candump -l log, decoded with the config's can: section");
   samples->excludes(log);
   log->excludes(samples);
-  app.add_option("--truth", o->truth_path,
-                 "truth CSV (time_s,mass_kg) in the input's time base; none by default");
+  auto* truth =
+      app.add_option("--truth", o->truth_path,
+                     "truth CSV (time_s,mass_kg) in the input's time base; none by default");
   app.add_option("--estimator", o->estimator, "override estimator.type")
       ->check(CLI::IsMember({"rls", "bayes"}));
-  app.add_option("--out", o->out_path, "write the estimate at every tick as CSV");
-  app.add_option("--plot", o->plot_path, "write a PNG plot (needs --out or uses a temporary CSV)");
-  app.add_flag("--json", o->json, "print the summary as one JSON object instead of a table");
+  auto* out = app.add_option("--out", o->out_path, "write the estimate at every tick as CSV");
+  auto* plot = app.add_option("--plot", o->plot_path,
+                              "write a PNG plot (needs --out or uses a temporary CSV)");
+  app.add_flag("--json", o->json,
+               "print the summary as one JSON object instead of a table (many logs: JSON lines)");
+  CLI::Option* single_only[3] = {truth, out, plot};
+  add_many_logs_options(app, o, single_only);
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return code;
-  if (o->samples_path.empty() && o->log_path.empty()) {
-    std::cerr << "vmass-replay: give the input: --samples CSV or --log LOG\n";
+  if (o->samples_path.empty() && o->log_path.empty() && !o->many()) {
+    std::cerr << "vmass-replay: give the input: --samples CSV, --log LOG or --logs PATH...\n";
+    return kExitUsage;
+  }
+  if (o->many() && (!o->samples_path.empty() || !o->log_path.empty())) {
+    std::cerr << "vmass-replay: --logs/--log-list replace --log and --samples\n";
+    return kExitUsage;
+  }
+  if (!o->many() && (o->jobs > 0 || !o->out_dir.empty())) {
+    std::cerr << "vmass-replay: --jobs and --out-dir go with --logs or --log-list\n";
     return kExitUsage;
   }
   return std::nullopt;
@@ -173,45 +216,13 @@ bool plot(const Options& o, const std::string& csv_path, const std::string& esti
   return rc == 0;
 }
 
-/// One run over the recording: every tick's estimate into the summary and the CSV writer.
-/// "" on success, else why the truth was refused (checked at tick 0).
-std::string replay(rt::InputSource& source, rt::TickStep& step, const vmass::PipelineParams& params,
-                   const std::optional<vmass::Truth>& truth, vmass::ReplaySummary* summary,
-                   vmass::EstimateCsvWriter* writer, rt::TickRun* run) {
-  const double rate_hz = params.estimator.differencing.tick_rate_hz;
-  const vmass::TimeUs tick_period_us = vmass::from_seconds(1.0 / rate_hz);
-  std::string truth_refusal;
-  rt::UnpacedClock clock;
-  rt::TickDriver driver(source, rate_hz);
-  *run = driver.run(clock, [&](std::int64_t k, vmass::TimeUs t) {
-    if (k == 0 && truth) truth_refusal = truth->check_time_base(t, tick_period_us);
-    if (!truth_refusal.empty()) return;
-    const vmass::Estimate& e = step.tick(k, t, source).estimate;
-    summary->add(e);
-    if (writer) writer->write(e);
-  });
-  return truth_refusal;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  Options o;
-  if (const auto code = parse_options(argc, argv, &o)) return *code;
-  vmass::ConfigLoad loaded = vmass::load_config(o.config_path);
-  if (!loaded.ok()) {
-    std::cerr << "vmass-replay: " << loaded.error << "\n";
-    return kExitUsage;
-  }
-  vmass::PipelineParams params = loaded.config->pipeline;
-  if (!o.estimator.empty()) {
-    params.estimator.type =
-        o.estimator == "rls" ? vmass::RegressorType::kRls : vmass::RegressorType::kBayes;
-  }
+/// One input (--log or --samples): the summary table (or JSON), the CSV and the plot.
+int replay_one_input(const Options& o, const vmass::Config& config,
+                     const vmass::PipelineParams& params) {
   std::optional<vmass::Truth> truth;
   if (!load_truth(o, &truth)) return kExitUsage;
   rt::CandumpFrameSource* log = nullptr;
-  std::unique_ptr<rt::InputSource> source = open_input(o, *loaded.config, &log);
+  std::unique_ptr<rt::InputSource> source = open_input(o, config, &log);
   if (!source) return kExitUsage;
   const std::string csv_path = estimate_csv_path(o);
   std::unique_ptr<vmass::EstimateCsvWriter> writer;
@@ -222,11 +233,11 @@ int main(int argc, char** argv) {
       return kExitUsage;
     }
   }
-
   rt::TickStep step(params);
   vmass::ReplaySummary summary(truth);
   rt::TickRun run;
-  const std::string refusal = replay(*source, step, params, truth, &summary, writer.get(), &run);
+  const std::string refusal =
+      vmass::play_recording(*source, step, truth, &summary, writer.get(), &run);
   report_input(o, *source, log, run);
   if (const std::string failed = source->read_error(); !failed.empty()) {
     std::cerr << "vmass-replay: " << failed << "\n";  // the run did not read its whole input
@@ -254,4 +265,81 @@ int main(int argc, char** argv) {
   if (!plotted) return kExitFailure;
   if (!o.json) std::cout << "plot                 " << o.plot_path << "\n";
   return kExitOk;
+}
+
+/// How much driving the logs held and how fast it went, on stderr.
+void report_many(const std::vector<vmass::FleetLogResult>& results, int jobs, double seconds) {
+  double driving_s = 0.0;
+  long failed = 0;
+  for (const vmass::FleetLogResult& r : results) {
+    driving_s += r.summary.duration_s;
+    if (!r.error.empty()) ++failed;
+  }
+  const double n = static_cast<double>(results.size());
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "vmass-replay: %zu logs (%ld failed), %.2f h of driving in %.2f s with %d jobs: "
+                "%.1f logs/s, %.2f h of driving per second\n",
+                results.size(), failed, driving_s / 3600.0, seconds, jobs, n / seconds,
+                driving_s / 3600.0 / seconds);
+  std::cerr << line;
+}
+
+/// Many logs (--logs, --log-list): one summary table on stdout.
+int replay_many_logs(const Options& o, const vmass::Config& config,
+                     const vmass::PipelineParams& params) {
+  vmass::FleetPlan plan;
+  std::string error = vmass::collect_logs(o.logs, o.log_list, &plan.logs);
+  if (error.empty() && !o.out_dir.empty()) error = vmass::check_csv_names(plan.logs);
+  vmass::signals::CanInputsLoad can = vmass::signals::load_can_inputs(config);
+  if (error.empty() && !can.ok()) error = can.error;
+  if (!error.empty()) {
+    std::cerr << "vmass-replay: " << error << "\n";
+    return kExitUsage;
+  }
+  std::error_code ec;
+  if (!o.out_dir.empty() && !fs::is_directory(o.out_dir) &&
+      !fs::create_directories(o.out_dir, ec)) {
+    std::cerr << "vmass-replay: " << o.out_dir << ": cannot make the folder: " << ec.message()
+              << "\n";
+    return kExitUsage;
+  }
+  for (const std::string& w : can.inputs->warnings) std::cerr << "vmass-replay: " << w << "\n";
+  plan.out_dir = o.out_dir;
+  plan.jobs =
+      o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<vmass::FleetLogResult> results = vmass::replay_logs(plan, *can.inputs, params);
+  const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+  std::string table = o.json ? "" : vmass::fleet_csv_header();
+  bool all_ok = true;
+  for (const vmass::FleetLogResult& r : results) {
+    table += o.json ? vmass::fleet_json_line(r) : vmass::fleet_csv_row(r);
+    if (!r.error.empty()) {
+      std::cerr << "vmass-replay: " << r.error << "\n";
+      all_ok = false;
+    }
+  }
+  std::cout << table;
+  report_many(results, plan.jobs, took.count());
+  return all_ok ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (const auto code = parse_options(argc, argv, &o)) return *code;
+  vmass::ConfigLoad loaded = vmass::load_config(o.config_path);
+  if (!loaded.ok()) {
+    std::cerr << "vmass-replay: " << loaded.error << "\n";
+    return kExitUsage;
+  }
+  vmass::PipelineParams params = loaded.config->pipeline;
+  if (!o.estimator.empty()) {
+    params.estimator.type =
+        o.estimator == "rls" ? vmass::RegressorType::kRls : vmass::RegressorType::kBayes;
+  }
+  if (o.many()) return replay_many_logs(o, *loaded.config, params);
+  return replay_one_input(o, *loaded.config, params);
 }

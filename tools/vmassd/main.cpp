@@ -1,8 +1,8 @@
 // vmassd: the real-time vehicle mass estimation daemon. Only the command line is here: the
 // daemon is vmass::service::run_daemon (vmass/service/daemon.hpp: its threads and how it ticks).
 //
-//   vmassd --config FILE [--can IFACE | --replay LOG [--speed X|max] | --samples CSV
-//          [--speed X|max]] [--lcm-url URL] [--state-file PATH] [--no-restore]
+//   vmassd --config FILE [--can IFACE | --can-fd FD | --replay LOG [--speed X|max] |
+//          --samples CSV [--speed X|max]] [--lcm-url URL] [--state-file PATH] [--no-restore]
 //
 // Publishes vmass.mass_estimate_t on VMASS_ESTIMATE, vmass.status_t on VMASS_STATUS (and
 // vmass.pair_t on VMASS_PAIRS when lcm.publish_pairs). Runs under systemd as Type=notify
@@ -25,6 +25,10 @@ int main(int argc, char** argv) {
   app.add_option("--config", o.config_path, "vmass YAML config")->required();
   auto* can = app.add_option("--can", o.can_interface,
                              "SocketCAN interface (default: daemon.can_interface, can0)");
+  auto* can_fd = app.add_option("--can-fd", o.can_fd,
+                                "read SocketCAN records (struct can_frame/canfd_frame) from this "
+                                "inherited descriptor instead of an interface (benchmarks, tests)")
+                     ->check(CLI::NonNegativeNumber);
   auto* replay = app.add_option("--replay", o.replay_log, "replay a candump -l log");
   auto* samples = app.add_option("--samples", o.samples_csv,
                                  "replay a samples.csv (inputs already in SI units)");
@@ -35,7 +39,8 @@ int main(int argc, char** argv) {
   app.add_option("--state-file", o.state_file,
                  "saved-state file (overrides daemon.state_file / $STATE_DIRECTORY)");
   app.add_flag("--no-restore", o.no_restore, "do not restore the saved state at start");
-  can->excludes(replay)->excludes(samples);
+  can->excludes(replay)->excludes(samples)->excludes(can_fd);
+  can_fd->excludes(replay)->excludes(samples);
   replay->excludes(samples);
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
 

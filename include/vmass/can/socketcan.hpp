@@ -13,6 +13,10 @@
 //   flow again once the interface is up. ENODEV (interface removed): the socket is closed and
 //   re-created by name, with exponential backoff, until the interface is back.
 //
+// - Batches: the records waiting are received up to 32 at a time (recvmmsg) and handed out one
+//   per read(), so a busy bus costs one system call per batch, not a poll and a recvmsg per
+//   frame; a read() that finds nothing waiting polls until its timeout.
+//
 // The read loop works on any file descriptor carrying can_frame/canfd_frame records (a seam:
 // unit tests use socketpair(AF_UNIX, SOCK_SEQPACKET)); opening and re-opening go through an
 // Opener function, receiving through an optional RecvMsg function.
@@ -26,6 +30,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -106,8 +111,9 @@ class SocketCanReader {
   SocketCanReader(const SocketCanReader&) = delete;
   SocketCanReader& operator=(const SocketCanReader&) = delete;
 
-  /// Waits up to timeout_ms for the next record. Never throws; never blocks longer than the
-  /// timeout (plus one re-open attempt).
+  /// The next record: one received earlier, else whatever is waiting, else waits up to
+  /// timeout_ms (0: returns kTimeout at once when nothing is waiting). Never throws; never
+  /// blocks longer than the timeout (plus one re-open attempt).
   ReadStatus read(CanFrame* frame, int timeout_ms);
 
   /// The parsing step of read(): one received record and its control messages.
@@ -119,8 +125,22 @@ class SocketCanReader {
 
  private:
   using Clock = std::chrono::steady_clock;
-  void close_fd();
+  struct Batch;
 
+  void close_fd();
+  /// The next frame of the current batch (kFrame, or kClosed at the end of a stream); nullopt
+  /// when the batch is used up.
+  std::optional<ReadStatus> take_batched(CanFrame* frame);
+  /// Receives the records waiting into the batch: kFrame (some), kTimeout (none), or the error.
+  ReadStatus receive_batch();
+  ReadStatus receive_error(int err);
+  /// Without a socket: one re-open attempt when due, else sleeps toward the deadline; kReopening
+  /// once it has passed, nullopt to go on.
+  std::optional<ReadStatus> wait_for_socket(Clock::time_point deadline);
+
+  std::unique_ptr<Batch> batch_;
+  int batch_count_ = 0;
+  int batch_next_ = 0;
   int fd_ = -1;
   Opener reopen_;
   RecvMsg recv_;

@@ -38,12 +38,16 @@ namespace vmass::service {
 struct DaemonOptions {
   std::string config_path;
   std::string can_interface;  ///< --can
-  std::string replay_log;     ///< --replay (candump -l)
-  std::string samples_csv;    ///< --samples
-  std::string speed = "1";    ///< --speed X|max (recordings only)
-  std::string lcm_url;        ///< --lcm-url (overrides lcm.url)
-  std::string state_file;     ///< --state-file (overrides daemon.state_file)
-  bool no_restore = false;    ///< --no-restore
+  /// --can-fd: SocketCAN records (struct can_frame / canfd_frame) from this inherited
+  /// descriptor instead of an interface, through the reader's fd seam (benchmarks, tests); -1:
+  /// none.
+  int can_fd = -1;
+  std::string replay_log;   ///< --replay (candump -l)
+  std::string samples_csv;  ///< --samples
+  std::string speed = "1";  ///< --speed X|max (recordings only)
+  std::string lcm_url;      ///< --lcm-url (overrides lcm.url)
+  std::string state_file;   ///< --state-file (overrides daemon.state_file)
+  bool no_restore = false;  ///< --no-restore
 };
 
 /// Runs the daemon until SIGTERM/SIGINT or the end of a recording. Returns the process exit

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Times cantools decoding the frames of a candump -l log (the baseline of vmass-can-bench).
+"""Times cantools decoding the frames of a candump -l log (the baseline of vmass-bench's decode/*).
 
 Times are CPU time of this process (time.process_time_ns), as the C++ side measures CPU
 time, so that other load on a shared machine does not skew the ratio.

@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# The performance suite of issue 12, one command: builds the release binaries, runs every
+# benchmark (each beside its baseline in the same run, medians of repeated runs) and writes
+# docs/performance.md with the figures, the machine, its load and the commit.
+#   scripts/performance-suite.sh [--quick] [--out FILE]   (from anywhere; ~10 min, --quick ~3)
+#
+#   micro        vmass-bench (Google Benchmark): decoding random vw_mqb frames in vmass-can's
+#                path and the daemon's, with cantools_bench.py on the same frames (the ratio),
+#                candump parsing, a pipeline tick, an RLS update, a Bayes batch, number formatting
+#   replay       one hour of driving (the simulated paper_exp2 log repeated to 60 min) through
+#                vmass-replay --out /dev/null, without --out and with --json, runs alternated
+#                with `wc -l` on the same file (the ratio)
+#   many logs    a folder of 200 logs through vmass-replay --logs with 1 job and with every core
+#   daemon       vmassd at 100 Hz fed through --can-fd (the SocketCAN reader's fd seam) at a
+#                realistic bus load by vmass-bench-daemon: CPU, resident memory, tick jitter
+#
+# Times are CPU time for the micro benchmarks and cantools, wall and CPU time of whole processes
+# otherwise; the load average beside each says how busy the machine was.
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cd "$repo"
+out_md=docs/performance.md
+quick=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) quick=1 ;;
+    --out) out_md=$2; shift ;;
+    *) echo "usage: scripts/performance-suite.sh [--quick] [--out FILE]" >&2; exit 2 ;;
+  esac
+  shift
+done
+runs=5 daemon_s=60 reps=5
+if [ "$quick" = 1 ]; then runs=3 daemon_s=20 reps=3; fi
+jobs=$(nproc)
+
+cmake --preset release >/dev/null
+cmake --build --preset release -j "$jobs" --target vmass-bench vmass-bench-daemon vmassd \
+  vmass-replay vmass-sim >/dev/null
+bin=$repo/build/release/bin
+work=$repo/build/perf
+rm -rf "$work"
+mkdir -p "$work"
+
+# The drive: paper_exp2 (200 s, 112,006 frames), and the hour: 18 copies shifted in time.
+"$bin/vmass-sim" --scenario paper_exp2 --out "$work/exp2" >/dev/null
+for k in $(seq 0 17); do
+  awk -v k="$k" '{ t = substr($1, 2, length($1) - 2) + k * 200.1
+    printf "(%017.6f) %s %s\n", t, $2, $3 }' "$work/exp2/drive.log"
+done >"$work/hour.log"
+mkdir -p "$work/fleet"
+for i in $(seq -w 1 200); do ln -s ../exp2/drive.log "$work/fleet/drive$i.log"; done
+
+load() { cut -d' ' -f1 /proc/loadavg; }
+# "<wall seconds> <CPU seconds>" of a command (output discarded)
+timed() {
+  local TIMEFORMAT='%R %U %S' t
+  t=$( { time "$@" >/dev/null 2>&1; } 2>&1)
+  awk '{ printf "%s %.3f\n", $1, $2 + $3 }' <<<"$t"
+}
+
+echo "micro benchmarks ..." >&2
+load_micro=$(load)
+"$bin/vmass-bench" --frames-log "$work/frames.log" --benchmark_repetitions="$reps" \
+  --benchmark_report_aggregates_only=true --benchmark_out="$work/micro.json" \
+  --benchmark_out_format=json >"$work/micro.txt"
+bash scripts/install-python-deps.sh >/dev/null  # cantools, in build/pyenv
+build/pyenv/bin/python tools/vmass_bench/cantools_bench.py --dbc tests/data/dbc/vw_mqb.dbc \
+  --log "$work/frames.log" --runs "$runs" >"$work/cantools.json"
+
+echo "replay of one hour ..." >&2
+load_replay=$(load)
+cfg=$work/exp2/config.yaml
+: >"$work/replay.txt"
+for _ in $(seq "$runs"); do  # alternated, so that both see the same load
+  echo "wc $(timed wc -l "$work/hour.log")" >>"$work/replay.txt"
+  echo "out $(timed "$bin/vmass-replay" --config "$cfg" --log "$work/hour.log" --out /dev/null)" \
+    >>"$work/replay.txt"
+  echo "noout $(timed "$bin/vmass-replay" --config "$cfg" --log "$work/hour.log")" >>"$work/replay.txt"
+  echo "json $(timed "$bin/vmass-replay" --config "$cfg" --log "$work/hour.log" --json)" \
+    >>"$work/replay.txt"
+done
+
+echo "200 logs ..." >&2
+load_fleet=$(load)
+: >"$work/fleet.txt"
+for _ in $(seq "$runs"); do
+  echo "1 $(timed "$bin/vmass-replay" --config "$cfg" --logs "$work/fleet" --jobs 1)" >>"$work/fleet.txt"
+  echo "$jobs $(timed "$bin/vmass-replay" --config "$cfg" --logs "$work/fleet" --jobs "$jobs")" \
+    >>"$work/fleet.txt"
+done
+
+echo "daemon, 2 x ${daemon_s} s ..." >&2
+# The bus as the daemon's socket sees it without kernel filters (2,500 frames/s of ids its DBC
+# does not know beside the drive's 560), and with them (a CAN socket's filters drop those ids).
+for filler in 2500 0; do
+  "$bin/vmass-bench-daemon" --log "$work/exp2/drive.log" --dbc "$work/exp2/vehicle.dbc" \
+    --filler-fps "$filler" --warmup 5 --seconds "$daemon_s" --daemon-log "$work/vmassd.log" -- \
+    "$bin/vmassd" --config "$cfg" --can-fd 3 --no-restore \
+    --lcm-url "file://$work/vmassd.lcm?mode=w" >"$work/daemon_$filler.json"
+done
+
+/usr/bin/python3 tools/vmass_bench/performance_report.py --work "$work" --out "$out_md" \
+  --commit "$(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo ' (with changes)')" \
+  --loads "$load_micro" "$load_replay" "$load_fleet" --jobs "$jobs"
+echo "performance-suite: wrote $out_md" >&2

@@ -1,0 +1,49 @@
+// Many logs at once (vmass-replay --logs / --log-list): every log of a fleet replayed with one
+// config, a log per worker thread (--jobs, default every core), each exactly as `--log` alone
+// replays it (its own SignalTable and Pipeline; the compiled DBC shared read-only), with one
+// summary row per log in the order the logs were named (fleet_table.hpp).
+//
+// Thread-safety: replay_logs() starts and joins its own workers; call it from one thread.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "replay_summary.hpp"
+#include "vmass/core/pipeline.hpp"
+#include "vmass/signals/signal_mapping.hpp"
+
+namespace vmass {
+
+/// What replaying one log of many gave.
+struct FleetLogResult {
+  std::string path;
+  std::string error;  ///< "" when replayed (and its CSV written); else why not
+  std::uint64_t frames = 0;
+  std::uint64_t corrupt_lines = 0;
+  std::string estimator;
+  ReplaySummary::Result summary;
+};
+
+struct FleetPlan {
+  std::vector<std::string> logs;
+  int jobs = 1;
+  std::string out_dir;  ///< "" or a folder for each log's estimate CSV, <stem>.csv
+};
+
+/// The logs `paths` names (a file as it is, a folder as its *.log files sorted by name), then
+/// those listed one per line in `list_file` ("" for none; blank lines and '#' comments skipped).
+/// "" or why they cannot be collected (a path that does not exist, no log at all).
+std::string collect_logs(const std::vector<std::string>& paths, const std::string& list_file,
+                         std::vector<std::string>* logs);
+
+/// "" or why the per-log estimate CSVs in out_dir would overwrite each other (two logs with
+/// the same stem).
+std::string check_csv_names(const std::vector<std::string>& logs);
+
+/// Replays every log of the plan (see the header comment); results in the order of plan.logs.
+std::vector<FleetLogResult> replay_logs(const FleetPlan& plan, const signals::CanInputs& can,
+                                        const PipelineParams& params);
+
+}  // namespace vmass

@@ -1,0 +1,25 @@
+// One recording played through the tick grid (runtime::TickDriver, runtime::TickStep) into a
+// ReplaySummary and, when given, an estimate CSV: the loop both of vmass-replay's modes (one
+// input, many logs) run, exactly as vmassd --speed max does.
+// Not thread-safe; one run per thread (many logs: one per worker).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "replay_summary.hpp"
+#include "vmass/csv/estimate_csv.hpp"
+#include "vmass/runtime/input_source.hpp"
+#include "vmass/runtime/tick_driver.hpp"
+#include "vmass/runtime/tick_step.hpp"
+
+namespace vmass {
+
+/// Plays the whole recording: every tick's estimate into *summary and, when writer is not
+/// null, the CSV. Returns "" on success, else why the truth was refused (checked at tick 0;
+/// nothing is summarised or written after a refusal).
+std::string play_recording(runtime::InputSource& source, runtime::TickStep& step,
+                           const std::optional<Truth>& truth, ReplaySummary* summary,
+                           EstimateCsvWriter* writer, runtime::TickRun* run);
+
+}  // namespace vmass
