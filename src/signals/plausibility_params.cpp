@@ -66,7 +66,7 @@ std::array<InputLimits, kInputCount> PlausibilityParams::default_input_limits() 
   set(Input::kRearRightDeflection, {-0.5, 0.5, 5.0, 0.0, 0.0});
   set(Input::kGear, {-5.0, 30.0, 0.0, 0.0, 0.0});
   set(Input::kBrakeSwitch, {0.0, 1.0, 0.0, 0.0, 0.0});
-  set(Input::kEngineTorque, {-2e4, 2e4, 0.0, 0.0, 0.0});  // a heavy truck's engine: 3.5 kN m
+  set(Input::kEngineTorque, {-2e4, 2e4, 0.0, 0.0, 0.0});      // a heavy truck's engine: 3.5 kN m
   set(Input::kEngineSpeed, {-200.0, 2000.0, 0.0, 0.0, 0.0});  // rad/s: an e-motor's 19000 rpm
   return l;
 }

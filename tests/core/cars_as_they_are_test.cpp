@@ -1,0 +1,186 @@
+// Cars as they are: no load sensor, engine torque instead of wheel torque, a torque converter
+// that slips, and the interval's model error and plausibility band, each on a synthetic drive
+// with a known answer.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "synthetic_drive.hpp"
+#include "vmass/core/longitudinal_extractor.hpp"
+#include "vmass/core/pipeline.hpp"
+
+namespace vmass {
+namespace {
+
+constexpr double kGearRatio = 2.0, kFinalDrive = 4.0, kEfficiency = 0.9;
+
+VehicleParams engine_torque_vehicle() {
+  VehicleParams v = testing::test_vehicle();
+  v.gear_ratios = {3.5, kGearRatio, 1.4};
+  v.final_drive_ratio = kFinalDrive;
+  v.driveline_efficiency = kEfficiency;
+  return v;
+}
+
+// The drive as a bus without wheel torque reports it: engine torque in gear 2 and the engine
+// speed that the locked driveline (or a slipping one, `slip` above) gives.
+std::vector<Sample> as_engine_torque_bus(std::vector<Sample> samples, const VehicleParams& v,
+                                         double slip) {
+  for (Sample& s : samples) {
+    const double wheel_nm = s.wheel_torque_nm;
+    const double ratio = kGearRatio * kFinalDrive;
+    const double efficiency = wheel_nm >= 0.0 ? kEfficiency : 1.0 / kEfficiency;
+    s.valid &= ~input_bit(Input::kWheelTorque);
+    s.set(Input::kEngineTorque, wheel_nm / (ratio * efficiency));
+    s.set(Input::kGear, 2.0);
+    s.set(Input::kEngineSpeed, s.speed_mps / v.wheel_radius_m * ratio * (1.0 + slip));
+  }
+  return samples;
+}
+
+std::vector<RegressionPair> longitudinal_pairs(const std::vector<Sample>& samples,
+                                               const VehicleParams& v) {
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  std::vector<RegressionPair> pairs;
+  for (const Sample& s : samples) {
+    if (const Extraction e = ex.step(s); e.has_pair()) pairs.push_back(e.pair);
+    Extraction released;
+    while (ex.pop_released(&released)) pairs.push_back(released.pair);
+  }
+  return pairs;
+}
+
+double least_squares_mass(const std::vector<RegressionPair>& pairs) {
+  double saa = 0.0, say = 0.0;
+  for (const RegressionPair& p : pairs) {
+    saa += p.delta_accel_mps2 * p.delta_accel_mps2;
+    say += p.delta_accel_mps2 * p.y_n;
+  }
+  return say / saa;
+}
+
+TEST(EngineTorque, ThroughTheGearRatiosItGivesTheMass) {
+  const VehicleParams v = engine_torque_vehicle();
+  testing::LongitudinalDrive drive;
+  drive.rotating_mass_kg = v.rotating_mass_kg;
+  const auto bus =
+      as_engine_torque_bus(testing::longitudinal_samples(drive, v, 0.0, 120.0, 15.0, 0.01), v, 0.0);
+  const auto pairs = longitudinal_pairs(bus, v);
+  ASSERT_GT(pairs.size(), 2000u);
+  EXPECT_NEAR(least_squares_mass(pairs), drive.mass_kg, 0.01 * drive.mass_kg);
+}
+
+TEST(EngineTorque, ASlippingConverterGivesNoPair) {
+  const VehicleParams v = engine_torque_vehicle();
+  testing::LongitudinalDrive drive;
+  // The engine turns 10 % faster than the wheels through the gear: the converter is open.
+  const auto bus =
+      as_engine_torque_bus(testing::longitudinal_samples(drive, v, 0.0, 60.0, 15.0, 0.01), v, 0.1);
+  EXPECT_TRUE(longitudinal_pairs(bus, v).empty());
+}
+
+TEST(EngineTorque, WithoutTheDrivelineWheelTorqueIsRequired) {
+  const VehicleParams v = testing::test_vehicle();  // no gear ratios
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  EXPECT_NE(ex.required_inputs() & input_bit(Input::kWheelTorque), 0u);
+  LongitudinalExtractor with(engine_torque_vehicle(), LongitudinalParams{}, DifferencingParams{});
+  EXPECT_EQ(with.required_inputs() & input_bit(Input::kWheelTorque), 0u);
+  EXPECT_NE(with.required_inputs() & input_bit(Input::kEngineTorque), 0u);
+}
+
+TEST(EngineTorque, LossesTakeFromDrivingAndAddToDragging) {
+  const VehicleParams v = engine_torque_vehicle();
+  EXPECT_NEAR(v.wheel_torque_from_engine_nm(100.0, 2), 100.0 * 8.0 * 0.9, 1e-9);
+  EXPECT_NEAR(v.wheel_torque_from_engine_nm(-100.0, 2), -100.0 * 8.0 / 0.9, 1e-9);
+  EXPECT_TRUE(std::isnan(v.wheel_torque_from_engine_nm(100.0, 0)));  // neutral
+  EXPECT_TRUE(std::isnan(v.wheel_torque_from_engine_nm(100.0, 4)));  // not a known gear
+}
+
+PipelineParams no_load_sensor_params() {
+  PipelineParams p;
+  p.vehicle = testing::test_vehicle();
+  p.vehicle.max_mass_kg = 2100.0;
+  p.suspension.has_sensor = false;
+  return p;
+}
+
+TEST(NoLoadSensor, StartsFromEmptyPlusHalfTheCapacityAndLearns) {
+  const PipelineParams p = no_load_sensor_params();
+  Pipeline pipeline(p);
+  testing::LongitudinalDrive drive;
+  drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  const auto samples = testing::longitudinal_samples(drive, p.vehicle, 0.0, 120.0, 15.0, 0.0);
+  pipeline.step(samples.front());
+  const Estimate& first = pipeline.estimate();
+  EXPECT_EQ(first.prior_reason, StatusReason::kNoLoadSensor);
+  EXPECT_NEAR(first.initial_mass_kg, 1800.0, 1e-9);
+  // Uniform between empty and full: std capacity / sqrt(12) (the Bayes prior's Student-t scale
+  // makes it a few percent wider), with the model error in quadrature.
+  const double prior_std = std::hypot(600.0 / std::sqrt(12.0), first.mass_model_std_kg);
+  EXPECT_NEAR(first.mass_std_kg, prior_std, 0.05 * prior_std);
+  EXPECT_EQ(first.status, EstimateStatus::kInitialising);  // no pair yet: not static_only
+  // The deflection is not needed.
+  EXPECT_EQ(first.invalid_inputs & input_bit(Input::kRearRightDeflection), 0u);
+  for (const Sample& s : samples) pipeline.step(s);
+  pipeline.flush();
+  EXPECT_NEAR(pipeline.estimate().mass_kg, drive.mass_kg, 0.01 * drive.mass_kg);
+}
+
+TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
+  PipelineParams p;
+  p.vehicle = testing::test_vehicle();
+  p.suspension = testing::test_suspension();
+  p.vehicle.wheel_torque_accuracy_fraction = 0.05;
+  p.vehicle.wheel_radius_accuracy_fraction = 0.02;
+  p.vehicle.pitch_gradient_std_deg_per_g = 0.5;
+  Pipeline pipeline(p);
+  testing::LongitudinalDrive drive;
+  drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  std::vector<Sample> samples = testing::standstill_samples(0.0, 4.0, z);
+  const auto moving = testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z);
+  samples.insert(samples.end(), moving.begin(), moving.end());
+  for (const Sample& s : samples) pipeline.step(s);
+  pipeline.flush();
+  const Estimate& e = pipeline.estimate();
+  const double relative =
+      std::sqrt(std::pow(0.05 / std::sqrt(3.0), 2) + std::pow(0.02 / std::sqrt(3.0), 2) +
+                std::pow(0.5 * 3.14159265358979 / 180.0, 2));
+  EXPECT_NEAR(e.mass_model_std_kg, relative * e.mass_kg, 1e-6);
+  EXPECT_GE(e.mass_std_kg, e.mass_model_std_kg);
+  // The 95 % half-width is at least 1.96 model stds, so it never shrinks below ~6 % here ...
+  EXPECT_GT(0.5 * (e.ci_high_kg - e.ci_low_kg), 1.9 * e.mass_model_std_kg);
+  // ... while the regression itself has converged: more driving would not narrow it.
+  EXPECT_EQ(e.status, EstimateStatus::kConverged);
+  EXPECT_LE(e.ci_low_kg, drive.mass_kg);
+  EXPECT_GE(e.ci_high_kg, drive.mass_kg);
+}
+
+TEST(Plausibility, AnEstimateBeyondTheMaximumIsHeldAndExplained) {
+  PipelineParams p = no_load_sensor_params();
+  p.vehicle.max_mass_kg = 1600.0;  // the car is declared lighter than it is: 1650 kg
+  p.vehicle.wheel_torque_accuracy_fraction = 0.0;
+  Pipeline pipeline(p);
+  testing::LongitudinalDrive drive;
+  drive.mass_kg = 2200.0;  // above 1.25 x 1600 = 2000 kg
+  drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  bool refused = false;
+  double held = 0.0;
+  for (const Sample& s : testing::longitudinal_samples(drive, p.vehicle, 0.0, 120.0, 15.0, 0.0)) {
+    pipeline.step(s);
+    const Estimate& e = pipeline.estimate();
+    if (!e.plausible) {
+      if (!refused) held = e.mass_kg;
+      refused = true;
+      EXPECT_EQ(e.mass_kg, held);  // the last plausible estimate, not the regression's
+      EXPECT_LE(e.mass_kg, e.plausible_high_kg);
+      EXPECT_GT(e.implausible_mass_kg, e.plausible_high_kg);
+    }
+  }
+  ASSERT_TRUE(refused);
+  const std::string why = pipeline.estimate().describe_rejection();
+  EXPECT_NE(why.find("above the plausible band (up to 2000 kg)"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace vmass

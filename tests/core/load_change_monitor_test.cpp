@@ -1,0 +1,101 @@
+// Given a car without a load sensor, when the load changes at a stop, the challenger started
+// after that stop learns the new mass and contradicts the old belief; a short stop or an
+// unchanged load does not.
+#include "vmass/core/load_change_monitor.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace vmass {
+namespace {
+
+constexpr double kEmptyKg = 1500.0;
+
+MassPrior start_prior() {
+  MassPrior p;
+  p.mass_kg = 1750.0;
+  p.mass_std_kg = 150.0;
+  p.mu_n = 0.0;
+  p.mu_std_n = 300.0;
+  return p;
+}
+
+LoadChangeMonitor make_monitor(bool use_rls) {
+  return LoadChangeMonitor(LoadChangeParams{}, RlsParams{}, BayesParams{}, use_rls, start_prior(),
+                           kEmptyKg, 0.05);
+}
+
+Sample at_speed(double t_s, double speed_mps) {
+  Sample s;
+  s.time_us = from_seconds(t_s);
+  s.set(Input::kSpeed, speed_mps);
+  return s;
+}
+
+// Stands for `stop_s`, then drives on.
+double stop_then_drive(LoadChangeMonitor* m, double t_s, double stop_s) {
+  for (double end = t_s + stop_s; t_s < end; t_s += 0.01) m->step(at_speed(t_s, 0.0));
+  m->step(at_speed(t_s, 5.0));
+  return t_s + 0.01;
+}
+
+// `n` pairs of a car of `mass_kg` with 20 N of noise.
+void offer_pairs(LoadChangeMonitor* m, double mass_kg, int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 20.0);
+  for (int i = 0; i < n; ++i) {
+    RegressionPair p;
+    p.delta_accel_mps2 = 0.3 * std::sin(0.37 * i) + (i % 2 == 0 ? 0.1 : -0.1);
+    p.y_n = mass_kg * p.delta_accel_mps2 + noise(rng);
+    p.noise_std_n = 20.0;
+    m->offer(p);
+  }
+}
+
+RegressorState belief(double mass_kg, double std_kg) {
+  RegressorState s;
+  s.mass_kg = mass_kg;
+  s.mass_std_kg = std_kg;
+  s.pairs_used = 2000;
+  return s;
+}
+
+class LoadChangeMonitorTest : public ::testing::TestWithParam<bool> {};
+
+TEST_P(LoadChangeMonitorTest, ALoadAddedAtALongStopIsFound) {
+  LoadChangeMonitor m = make_monitor(GetParam());
+  EXPECT_FALSE(m.active());
+  stop_then_drive(&m, 0.0, 6.0);  // 6 s >= min_stop_s
+  ASSERT_TRUE(m.active());
+  offer_pairs(&m, 1900.0, 100, 1);  // fewer than min_pairs: no decision yet
+  EXPECT_FALSE(m.contradicts(belief(1600.0, 5.0)));
+  offer_pairs(&m, 1900.0, 400, 2);
+  EXPECT_TRUE(m.contradicts(belief(1600.0, 5.0)));
+  EXPECT_NEAR(m.challenger().state().mass_kg, 1900.0, 20.0);
+  m.dismiss();
+  EXPECT_FALSE(m.contradicts(belief(1600.0, 5.0)));
+}
+
+TEST_P(LoadChangeMonitorTest, TheSameLoadIsNoChange) {
+  LoadChangeMonitor m = make_monitor(GetParam());
+  stop_then_drive(&m, 0.0, 6.0);
+  offer_pairs(&m, 1600.0, 500, 3);
+  EXPECT_FALSE(m.contradicts(belief(1600.0, 5.0)));
+  // Nor is a difference below min_change_fraction of the empty mass (3 % = 45 kg), however sure.
+  EXPECT_FALSE(m.contradicts(belief(1640.0, 0.1)));
+}
+
+TEST_P(LoadChangeMonitorTest, AShortStopStartsNoChallenger) {
+  LoadChangeMonitor m = make_monitor(GetParam());
+  stop_then_drive(&m, 0.0, 2.0);  // a junction, not a loading stop
+  EXPECT_FALSE(m.active());
+  offer_pairs(&m, 1900.0, 500, 4);
+  EXPECT_FALSE(m.contradicts(belief(1600.0, 5.0)));
+}
+
+INSTANTIATE_TEST_SUITE_P(BothRegressors, LoadChangeMonitorTest, ::testing::Values(false, true));
+
+}  // namespace
+}  // namespace vmass
