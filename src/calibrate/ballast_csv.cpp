@@ -107,6 +107,17 @@ struct Columns {
 };
 
 /// The header: which column is what, in which unit; the file's kind. Throws Failure.
+// The header as a message may quote it: cut to 80 characters, and never raw control bytes.
+std::string quoted_header(std::string_view line) {
+  constexpr std::size_t kMaxShown = 80;
+  for (const char ch : line) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if ((byte < 0x20 && ch != '\t') || byte == 0x7f) return "(binary data: not a CSV header)";
+  }
+  if (line.size() <= kMaxShown) return "'" + std::string(line) + "'";
+  return "'" + std::string(line.substr(0, kMaxShown)) + "...'";
+}
+
 Columns read_header(const std::vector<std::string_view>& cells, std::string_view line,
                     const std::string& where, BallastCsvKind* kind) {
   Columns c;
@@ -122,13 +133,13 @@ Columns read_header(const std::vector<std::string_view>& cells, std::string_view
   }
   if (c.deflection.index < 0) {
     throw Failure(where + ": no rear_right_deflection_<unit> column (unit one of " +
-                  unit_list(kDeflectionUnits) + ") in the header '" + std::string(line) + "'");
+                  unit_list(kDeflectionUnits) + ") in the header " + quoted_header(line));
   }
   if (c.mass.index < 0 && c.time.index < 0) {
     throw Failure(where +
                   ": need an added_mass_<unit> column (one row per sample or step) "
-                  "or a time_<unit> column (a recording for plateau detection); header '" +
-                  std::string(line) + "'");
+                  "or a time_<unit> column (a recording for plateau detection); header " +
+                  quoted_header(line));
   }
   *kind = c.mass.index >= 0 ? BallastCsvKind::kSteps : BallastCsvKind::kSeries;
   return c;

@@ -261,6 +261,11 @@ ConfigLoad load_config(const std::string& path) {
     out.error = text.error;
     return out;
   }
+  if (text.text.find_first_not_of(" \t\r\n") == std::string::npos) {
+    ConfigLoad out;
+    out.error = path + ": empty file: expected a vmass config (docs/formats.md)";
+    return out;
+  }
   const auto slash = path.find_last_of('/');
   const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash);
   try {

@@ -176,6 +176,7 @@ void report_input(const Options& o, const rt::InputSource& source,
     for (const auto& w : samples->warnings()) std::cerr << "vmass-replay: warning: " << w << "\n";
     const std::int64_t skipped = source.counters().malformed.load();
     if (skipped > 0) std::cerr << "vmass-replay: skipped " << skipped << " malformed rows\n";
+    if (!run.any_record) std::cerr << "vmass-replay: " << o.samples_path << ": no rows\n";
     return;
   }
   const auto& can = dynamic_cast<const rt::CanInputSource&>(source);
