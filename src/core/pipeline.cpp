@@ -365,9 +365,10 @@ void Pipeline::publish_state(const RegressorState& state) {
   if (!plausible && has_plausible_) return;  // hold the last plausible estimate
   has_plausible_ = has_plausible_ || plausible;
   const double model_std = model_std_kg(state.mass_kg);
+  // The regression's own 95 % quantile (Student t or normal); the normal one without a spread.
   const double z = state.mass_std_kg > 0.0
                        ? 0.5 * (state.ci_high_kg - state.ci_low_kg) / state.mass_std_kg
-                       : 1.959963984540054;  // the regression's own quantile (Student t or normal)
+                       : 1.959963984540054;
   const double half_width = std::hypot(0.5 * (state.ci_high_kg - state.ci_low_kg), z * model_std);
   estimate_.mass_kg = state.mass_kg;
   estimate_.mu_n = state.mu_n;
