@@ -17,6 +17,10 @@ constexpr double kResidualClip = 3.0;
 constexpr double kImpliedLowPerEmpty = 0.5;
 constexpr double kImpliedHighPerMax = 1.5;
 constexpr double kImpliedHighPerEmptyWithoutMax = 2.5;
+// Beyond these no road vehicle goes (tyres give at most about 1.2 g; 360 km/h).
+constexpr double kMaxAbsAccelMps2 = 20.0;
+constexpr double kMaxSpeedMps = 100.0;
+constexpr double kMaxForcePerWeight = 2.0;
 // A pitch of k deg/g tilts the accelerometer by k a / g deg: it reads a (1 + k pi / 180).
 constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
 }  // namespace
@@ -128,6 +132,16 @@ bool LongitudinalExtractor::driveline_slips(const Sample& s) const {
            vehicle_.max_driveline_slip_fraction * through_gear_radps);
 }
 
+// Values no car produces (a spike, a wrong scale) are a hole in the data, as NaN is: through the
+// low-pass one such tick would spread over seconds of pairs.
+bool LongitudinalExtractor::physically_possible(double force_n, const Sample& s) const {
+  const double heaviest_kg = std::isfinite(vehicle_.max_mass_kg)
+                                 ? vehicle_.max_mass_kg
+                                 : kImpliedHighPerEmptyWithoutMax * vehicle_.empty_mass_kg;
+  return std::abs(s.accel_x_mps2) <= kMaxAbsAccelMps2 && std::abs(s.speed_mps) <= kMaxSpeedMps &&
+         std::abs(force_n) <= kMaxForcePerWeight * heaviest_kg * vehicle_.gravity_mps2;
+}
+
 // The tick's force and whether the tick is clean (see the header). False: not usable at all.
 bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   if (!s.has_all(required_)) return false;
@@ -142,9 +156,7 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
     force -= 0.5 * vehicle_.air_density_kg_per_m3 * vehicle_.drag_area_m2 * s.speed_mps *
              std::abs(s.speed_mps);
   }
-  if (!std::isfinite(force) || !std::isfinite(s.accel_x_mps2) || !std::isfinite(s.speed_mps)) {
-    return false;
-  }
+  if (!physically_possible(force, s)) return false;
   const bool gear_ok =
       (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) && !driveline_slips(s);
   previous_gear_ = s.has(Input::kGear) ? s.gear : 0;

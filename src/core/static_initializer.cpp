@@ -35,6 +35,8 @@ std::string StaticInitParams::validate() const {
 
 namespace {
 
+constexpr double kMaxStandstillAccelPerG = 0.5;  // a 58 % slope
+
 // E[1/q] and E[1/q^2] of the over-read factor q = (x / l_f)(1 - 2 u), x uniform on
 // [a l, b l], u = y / t uniform on [-c, c] (independent), in closed form.
 void payload_factor(double lf_over_l, double a, double b, double c, double* mean, double* std) {
@@ -147,7 +149,10 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
   const double delta = z - window_mean_;
   window_mean_ += delta / static_cast<double>(window_count_);
   window_m2_ += delta * (z - window_mean_);
-  if (sample.has(Input::kAccelX) && std::isfinite(sample.accel_x_mps2)) {
+  // At rest a_x is g sin(grade): a reading beyond half a g is a spike, not a slope (one 1e6x
+  // spike in the mean would make the next stop read as "another grade").
+  if (sample.has(Input::kAccelX) &&
+      std::abs(sample.accel_x_mps2) < kMaxStandstillAccelPerG * vehicle_.gravity_mps2) {
     ++grade_count_;
     grade_sum_ += sample.accel_x_mps2;
   }

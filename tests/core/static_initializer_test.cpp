@@ -2,6 +2,7 @@
 // gives the mass; when the load changes at standstill, a new initial mass is reported.
 #include "vmass/core/static_initializer.hpp"
 
+#include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -233,6 +234,25 @@ TEST(StaticInitializer, AnotherGradeIsNotALoadChange) {
   ASSERT_TRUE(changed);
   EXPECT_TRUE(changed->load_changed);
   EXPECT_NEAR(changed->grade_accel_mps2, 0.0, 1e-12);
+}
+
+// One accelerometer spike of a million times a slope's reading, or a NaN, at rest is not a
+// grade: the window's grade is that of the other samples.
+TEST(StaticInitializer, ASpikeInTheAccelerationIsNotAGrade) {
+  const VehicleParams v = test_vehicle();
+  const SuspensionParams s = test_suspension();
+  StaticInitializer init(v, s, StaticInitParams{});
+  const double z = deflection_for(1650.0, v, s);
+  std::optional<StaticMass> result;
+  for (TimeUs t = 0; t < 4 * kUsPerSecond && !result; t += 10'000) {
+    Sample x = standing(t, z);
+    x.set(Input::kAccelX, 0.29);  // a 3 % slope
+    if (t == 2 * kUsPerSecond) x.set(Input::kAccelX, 0.29e6);
+    if (t == 2 * kUsPerSecond + 10'000) x.set(Input::kAccelX, std::nan(""));
+    result = init.step(x);
+  }
+  ASSERT_TRUE(result);
+  EXPECT_NEAR(result->grade_accel_mps2, 0.29, 1e-9);
 }
 
 }  // namespace

@@ -125,6 +125,7 @@ class LongitudinalExtractor {
   /// The engine turns faster or slower than the wheels through the gear (converter, clutch).
   bool driveline_slips(const Sample& s) const;
   bool braking(const Sample& s);
+  bool physically_possible(double force_n, const Sample& s) const;
   Record filtered_record(const Sample& s, double force_n);
   void update_noise(double residual_n);
   /// The pair's acceleration change from the configured source.
