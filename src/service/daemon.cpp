@@ -27,6 +27,7 @@
 #include "vmass/service/state_store.hpp"
 #include "vmass/service/systemd_notifier.hpp"
 #include "vmass/signals/signal_mapping.hpp"
+#include "vmass/version.hpp"
 
 namespace vmass::service {
 namespace {
@@ -284,8 +285,8 @@ bool save_final_state(runtime::InputSource& source, runtime::TickStep& step, Sha
 void log_start(const StatusContext& ctx, const Plan& plan, const DaemonOptions& options,
                const ServiceSettings& settings, const std::string& state_file,
                std::string_view estimator, const SystemdNotifier& notifier) {
-  spdlog::info("vmassd running: input {}, {} estimator at {} Hz{}, LCM {}{}", ctx.source_name,
-               estimator, plan.tick_rate_hz,
+  spdlog::info("vmassd running (version {}): input {}, {} estimator at {} Hz{}, LCM {}{}",
+               kVersion, ctx.source_name, estimator, plan.tick_rate_hz,
                plan.recorded ? (plan.max_speed ? std::string(", speed max (log time)")
                                                : ", speed " + options.speed)
                              : std::string(),
