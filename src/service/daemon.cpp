@@ -20,6 +20,7 @@
 #include "vmass/config/config.hpp"
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/log_frame_source.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
@@ -128,11 +129,17 @@ OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
   std::string error;
   std::unique_ptr<runtime::FrameSource> frames;
   if (!options.replay_log.empty()) {
-    frames = runtime::CandumpFrameSource::open(options.replay_log, &error);
-    if (!frames) {
+    std::unique_ptr<runtime::LogFrameSource> log =
+        runtime::open_log_frame_source(options.replay_log, &error);
+    if (!log) {
       spdlog::error("{}", error);
       return {nullptr, kExitUsage};
     }
+    spdlog::info("{}: {}", options.replay_log, can::log_format_name(log->format()));
+    log->on_error([log = log.get()](const can::CandumpError& e) {
+      if (log->stats().corrupt <= 10) spdlog::warn("{} (skipped)", e.message);
+    });
+    frames = std::move(log);
   } else {
     can::SocketCanOptions can_options;
     can_options.interface =
@@ -285,8 +292,8 @@ bool save_final_state(runtime::InputSource& source, runtime::TickStep& step, Sha
 void log_start(const StatusContext& ctx, const Plan& plan, const DaemonOptions& options,
                const ServiceSettings& settings, const std::string& state_file,
                std::string_view estimator, const SystemdNotifier& notifier) {
-  spdlog::info("vmassd running (version {}): input {}, {} estimator at {} Hz{}, LCM {}{}",
-               kVersion, ctx.source_name, estimator, plan.tick_rate_hz,
+  spdlog::info("vmassd running (version {}): input {}, {} estimator at {} Hz{}, LCM {}{}", kVersion,
+               ctx.source_name, estimator, plan.tick_rate_hz,
                plan.recorded ? (plan.max_speed ? std::string(", speed max (log time)")
                                                : ", speed " + options.speed)
                              : std::string(),

@@ -1,13 +1,17 @@
 // vmass-can: the CAN layer from the command line.
 //
 //   vmass-can check  --dbc FILE [--strict]            validate a DBC, list messages and signals
-//   vmass-can decode --dbc FILE [LOG] [--json]        decode a candump -l log (stdin without LOG)
+//   vmass-can decode --dbc FILE [LOG] [--json]        decode a CAN log (stdin without LOG): candump
+//                                                     -l or screen output, Vector ASC or BLF,
+//                                                     PEAK TRC, ASAM MDF4
+//                                                     (runtime/log_frame_source)
 //   vmass-can dump   --can IFACE [--count N] [--idle-timeout S] [--dbc FILE]
 //                                                     print frames from SocketCAN as candump -l
 //
 // Exit codes (tools/common/exit_code.hpp): 0 ok; 1 failure (SocketCAN cannot be opened, dump
 // got fewer than --count frames before the idle timeout); 2 usage or input error (a DBC with
-// errors, or with deviations under --strict; a log that cannot be opened).
+// errors, or with deviations under --strict; a log that cannot be opened or is no CAN log);
+// decode exits 1 when the BLF/MDF4 converter failed on the way.
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
@@ -22,10 +26,13 @@
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
 #include "vmass/can/socketcan.hpp"
+#include "vmass/runtime/log_frame_source.hpp"
+#include "vmass/runtime/text_log_frame_source.hpp"
 
 namespace {
 
 using namespace vmass::can;
+namespace rt = vmass::runtime;
 
 void print_diagnostics(const DbcParseResult& r) {
   for (const DbcDiagnostic& d : r.diagnostics) std::cerr << d.to_string() << "\n";
@@ -133,94 +140,109 @@ int run_check(const std::string& dbc, bool strict) {
   return r.ok() && compiles ? vmass::tools::kExitOk : vmass::tools::kExitUsage;
 }
 
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
+/// The log to decode: a file of any format vmass reads, or standard input (text formats).
+std::unique_ptr<rt::LogFrameSource> open_decode_input(const std::string& log) {
+  std::string error;
+  std::unique_ptr<rt::LogFrameSource> source;
+  if (log.empty() || log == "-") {
+    source = rt::TextLogFrameSource::from_stream(std::make_unique<std::istream>(std::cin.rdbuf()),
+                                                 "stdin", false, &error);
+  } else {
+    source = rt::open_log_frame_source(log, &error, false);
+  }
+  if (!source) std::cerr << "vmass-can decode: " << error << "\n";
+  return source;
+}
+
+/// One decoded frame as a JSON object (one line).
+void append_json(std::string& out, const Decoder& decoder, const Message& msg, const CanFrame& f) {
+  out += "{\"time_s\": ";
+  append_time(out, f.time_us);
+  out += ", \"id\": ";
+  out += std::to_string(f.id);
+  out += ", \"message\": \"";
+  out += json_escape(msg.name);
+  out += "\", \"signals\": {";
+  bool first = true;
+  decoder.decode(f, [&](int i, double v) {
+    if (!first) out += ", ";
+    first = false;
+    out += '"';
+    out += json_escape(msg.signals[static_cast<std::size_t>(i)].name);
+    out += "\": ";
+    append_number(out, v);
+  });
+  out += "}}\n";
+}
+
+/// One decoded frame as cantools decode prints it: the candump line, then the signals.
+void append_text(std::string& out, const Decoder& decoder, const Message& msg, const CanFrame& f,
+                 std::string_view interface) {
+  std::string line = format_candump_line(f, interface);
+  line.pop_back();
+  out += line + " :: " + msg.name + "(";
+  bool first = true;
+  decoder.decode(f, [&](int i, double v) {
+    const Signal& s = msg.signals[static_cast<std::size_t>(i)];
+    if (!first) out += ", ";
+    first = false;
+    out += s.name + ": ";
+    const double raw = std::round((v - s.offset) / s.factor);
+    const ValueDescription* choice = nullptr;
+    for (const ValueDescription& vd : s.values) {
+      if (static_cast<double>(vd.value) == raw) choice = &vd;
+    }
+    if (choice != nullptr && s.value_type == ValueType::kInteger) {
+      out += "'" + choice->text + "'";
+    } else {
+      append_number(out, v);
+      if (!s.unit.empty()) out += " " + s.unit;
+    }
+  });
+  out += ")\n";
+}
+
 int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
   auto decoder = load_decoder(dbc, strict, json);
   if (!decoder) return vmass::tools::kExitUsage;
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  if (!log.empty() && log != "-") {
-    file.open(log);
-    if (!file) {
-      std::cerr << log << ": cannot open\n";
-      return vmass::tools::kExitUsage;
-    }
-    in = &file;
-  }
-  CandumpReader reader(*in, log.empty() ? "stdin" : log);
-  reader.on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
+  std::unique_ptr<rt::LogFrameSource> source = open_decode_input(log);
+  if (!source) return vmass::tools::kExitUsage;
+  source->on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
   const Database& db = decoder->database();
   DecodeStats stats;
-  CandumpRecord rec;
+  CanFrame frame;
   std::string out;
   out.reserve(4096);
-  while (reader.next(&rec)) {
+  while (source->read(&frame, 0) == rt::FrameSource::Read::kFrame) {
     int m = -1;
     out.clear();
-    const DecodeStatus st = decoder->classify(rec.frame, &m);
+    const DecodeStatus st = decoder->classify(frame, &m);
     stats.count(st);
+    const Message* msg = m >= 0 ? &db.messages[static_cast<std::size_t>(m)] : nullptr;
+    if (st == DecodeStatus::kTooShort) {
+      std::cerr << source->path() << ":" << (source->unit() == "record" ? "record " : "")
+                << source->position() << ": frame " << msg->name << " has " << int(frame.len)
+                << " bytes, the DBC says " << msg->length << ": rejected\n";
+    }
     if (st != DecodeStatus::kOk) {
-      if (st == DecodeStatus::kTooShort) {
-        std::cerr << reader.source() << ":" << reader.line_number() << ": frame "
-                  << db.messages[static_cast<std::size_t>(m)].name << " has " << int(rec.frame.len)
-                  << " bytes, the DBC says " << db.messages[static_cast<std::size_t>(m)].length
-                  << ": rejected\n";
-      }
-      if (!json) std::cout << format_candump_line(rec.frame, rec.interface);
+      if (!json) std::cout << format_candump_line(frame, source->interface_name());
       continue;
     }
-    const Message& msg = db.messages[static_cast<std::size_t>(m)];
     if (json) {
-      out += "{\"time_s\": ";
-      append_time(out, rec.frame.time_us);
-      out += ", \"id\": ";
-      out += std::to_string(rec.frame.id);
-      out += ", \"message\": \"";
-      out += json_escape(msg.name);
-      out += "\", \"signals\": {";
-      bool first = true;
-      decoder->decode(rec.frame, [&](int i, double v) {
-        if (!first) out += ", ";
-        first = false;
-        out += '"';
-        out += json_escape(msg.signals[static_cast<std::size_t>(i)].name);
-        out += "\": ";
-        append_number(out, v);
-      });
-      out += "}}\n";
+      append_json(out, *decoder, *msg, frame);
     } else {
-      std::string line = format_candump_line(rec.frame, rec.interface);
-      line.pop_back();
-      out += line + " :: " + msg.name + "(";
-      bool first = true;
-      decoder->decode(rec.frame, [&](int i, double v) {
-        const Signal& s = msg.signals[static_cast<std::size_t>(i)];
-        if (!first) out += ", ";
-        first = false;
-        out += s.name + ": ";
-        const double raw = std::round((v - s.offset) / s.factor);
-        const ValueDescription* choice = nullptr;
-        for (const ValueDescription& vd : s.values) {
-          if (static_cast<double>(vd.value) == raw) choice = &vd;
-        }
-        if (choice != nullptr && s.value_type == ValueType::kInteger) {
-          out += "'" + choice->text + "'";
-        } else {
-          append_number(out, v);
-          if (!s.unit.empty()) out += " " + s.unit;
-        }
-      });
-      out += ")\n";
+      append_text(out, *decoder, *msg, frame, source->interface_name());
     }
     std::cout << out;
   }
   std::cout.flush();
-  const CandumpStats& cs = reader.stats();
-  std::cerr << "vmass-can decode: " << cs.frames << " frames, " << stats.decoded << " decoded, "
-            << stats.unknown_id << " unknown id, " << stats.too_short << " too short, "
-            << stats.remote << " remote, " << stats.error_frames << " error frames, " << cs.corrupt
-            << " corrupt lines\n";
-  return 0;
+  const CandumpStats& cs = source->stats();
+  std::cerr << "vmass-can decode: " << log_format_name(source->format()) << ", " << cs.frames
+            << " frames, " << stats.decoded << " decoded, " << stats.unknown_id << " unknown id, "
+            << stats.too_short << " too short, " << stats.remote << " remote, "
+            << stats.error_frames << " error frames, " << cs.corrupt << " corrupt "
+            << source->unit() << "s\n";
+  return source->problem().empty() ? vmass::tools::kExitOk : vmass::tools::kExitFailure;
 }
 
 int run_dump(const std::string& iface, long count, double idle_timeout_s, const std::string& dbc) {
@@ -288,9 +310,11 @@ int main(int argc, char** argv) {
   check->add_option("--dbc", dbc, "DBC file")->required();
   check->add_flag("--strict", strict, "treat deviations from the format as errors");
 
-  CLI::App* decode = app.add_subcommand("decode", "decode a candump -l log with a DBC file");
+  CLI::App* decode = app.add_subcommand("decode", "decode a CAN log with a DBC file");
   decode->add_option("--dbc", dbc, "DBC file")->required();
-  decode->add_option("log", log, "candump -l log (default: standard input)");
+  decode->add_option("log", log,
+                     "CAN log: candump -l or screen output, Vector ASC/BLF, PEAK TRC, ASAM MDF4 "
+                     "(default: standard input, a text format)");
   decode->add_flag("--json", json, "one JSON object per decoded frame");
   decode->add_flag("--strict", strict, "refuse a DBC with deviations");
 

@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
   app.add_option("--config", o.config_path, "vmass YAML config")->required();
   auto* can = app.add_option("--can", o.can_interface,
                              "SocketCAN interface (default: daemon.can_interface, can0)");
-  auto* replay = app.add_option("--replay", o.replay_log, "replay a candump -l log");
+  auto* replay = app.add_option(
+      "--replay", o.replay_log,
+      "replay a CAN log (candump -l, Vector ASC/BLF, PEAK TRC, ASAM MDF4; found from its content)");
   auto* samples = app.add_option("--samples", o.samples_csv,
                                  "replay a samples.csv (inputs already in SI units)");
   app.add_option("--speed", o.speed,

@@ -38,7 +38,7 @@ namespace vmass::service {
 struct DaemonOptions {
   std::string config_path;
   std::string can_interface;  ///< --can
-  std::string replay_log;     ///< --replay (candump -l)
+  std::string replay_log;     ///< --replay (a CAN log: runtime/log_frame_source.hpp)
   std::string samples_csv;    ///< --samples
   std::string speed = "1";    ///< --speed X|max (recordings only)
   std::string lcm_url;        ///< --lcm-url (overrides lcm.url)
