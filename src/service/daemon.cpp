@@ -106,9 +106,13 @@ void log_mapping(const signals::CanInputs& can) {
       unmapped += (unmapped.empty() ? "" : ", ") + std::string(input_name(input));
     }
   }
-  std::string mapped = can.mapping.describe();
-  while (!mapped.empty() && mapped.back() == '\n') mapped.pop_back();
-  if (!mapped.empty()) spdlog::info("can.inputs:\n{}", mapped);
+  // One message per input: a journal entry each (SignalMapping::describe() gives one per line).
+  const std::string mapped = can.mapping.describe();
+  for (std::size_t p = 0; p < mapped.size();) {
+    const std::size_t eol = std::min(mapped.find('\n', p), mapped.size());
+    if (eol > p) spdlog::info("can.inputs.{}", std::string_view(mapped).substr(p, eol - p));
+    p = eol + 1;
+  }
   if (!unmapped.empty()) spdlog::warn("can.inputs: not mapped, stay invalid: {}", unmapped);
 }
 

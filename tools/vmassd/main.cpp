@@ -9,12 +9,11 @@
 // (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
 // (--replay, --samples) stops the daemon at its end. Exit codes (tools/common/exit_code.hpp):
 // 0 orderly stop, 1 start-up failure (input or LCM cannot be opened), 2 usage or config error.
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
 #include "exit_code.hpp"
 #include "vmass/service/daemon.hpp"
+#include "vmass/service/journal_logging.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"vmassd: live vehicle mass estimation from CAN data, published on LCM"};
@@ -38,8 +37,7 @@ int main(int argc, char** argv) {
   replay->excludes(samples);
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
 
-  // Diagnostics go to stderr (the journal under systemd); stdout stays free.
-  spdlog::set_default_logger(spdlog::stderr_color_mt("vmassd"));
-  spdlog::set_pattern("vmassd %^%l%$: %v");
+  // Diagnostics go to stderr (the journal under systemd, in its form); stdout stays free.
+  vmass::service::setup_logging("vmassd");
   return vmass::service::run_daemon(o);
 }
