@@ -157,6 +157,7 @@ bool plot(const Options& o, const std::string& csv_path, const std::string& esti
                         shell_quote(csv_path) + " --out " + shell_quote(o.plot_path) + " --title " +
                         shell_quote("vmass-replay " + estimator_name + ": " + o.input_path());
   if (!o.truth_path.empty()) command += " --truth " + shell_quote(o.truth_path);
+  command += " >&2";  // its account of the axes goes with the diagnostics, not the summary
   const int rc = std::system(command.c_str());
   if (rc != 0) std::cerr << "vmass-replay: plotting failed (" << command << ")\n";
   return rc == 0;
