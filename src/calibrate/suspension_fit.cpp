@@ -347,7 +347,7 @@ ProgressiveRun fit_progressive(const FitInput& in, std::string* reason) {
   ProgressiveRun run;
   run.scale_mm = in.start_scale();
   const int below = in.options.min_steps_below_knee, beyond = in.options.min_steps_beyond_knee;
-  if (in.size() < static_cast<std::size_t>(below + beyond)) {
+  if (in.size() < static_cast<std::size_t>(below) + static_cast<std::size_t>(beyond)) {
     *reason = "needs at least " + std::to_string(below + beyond) +
               " steps (fit.min_steps_below_knee + fit.min_steps_beyond_knee)";
     return run;
