@@ -120,7 +120,7 @@ CandumpLine TrcParser::parse_v1(std::string_view line, CanFrame* f, std::uint32_
   if (!detail::parse_fixed(t[1], 3, &offset_us)) return corrupt(error, "time offset is not ms");
   f->time_us = start_us_ + offset_us;
   if (version_x10_ == 10) return parse_v1_payload(t, 2, 3, f, error);
-  const std::size_t type_at = version_x10_ >= 13 ? 3 : 2;
+  const std::size_t type_at = version_x10_ >= 12 ? 3 : 2;  // 1.2 and 1.3: the bus first
   if (version_x10_ >= 12 && !detail::parse_dec(t[2], 16, bus)) {
     return corrupt(error, "bus is not a number");
   }

@@ -130,7 +130,7 @@ TEST(TrcParser, Version21AsPythonCanAndPcanViewWriteIt) {
             CandumpLine::kCorrupt);
 }
 
-TEST(TrcParser, Versions10And11) {
+TEST(TrcParser, Versions10To13) {
   TrcParser v10;
   CanFrame f;
   std::string why;
@@ -151,6 +151,16 @@ TEST(TrcParser, Versions10And11) {
             CandumpLine::kComment);
   EXPECT_EQ(parse(v11, "     4)      1843.0  Rx     0001  8  RTR", &f, &why), CandumpLine::kFrame);
   EXPECT_TRUE(f.remote());
+  TrcParser v13;
+  EXPECT_EQ(parse(v13, ";$FILEVERSION=1.3", &f, &why), CandumpLine::kComment);
+  CandumpRecord r;
+  ASSERT_EQ(v13.parse("     5)      1844.5 2  Tx         0123 -  2  0A 0B", &r, &why),
+            CandumpLine::kFrame)
+      << why;
+  EXPECT_EQ(r.frame.time_us, 1844500);
+  EXPECT_EQ(r.frame.id, 0x123u);
+  EXPECT_EQ(r.frame.data[1], 0x0B);
+  EXPECT_EQ(r.interface, "can1");  // bus 2
 }
 
 TEST(CandumpScreenParser, WithAndWithoutTimes) {
