@@ -377,6 +377,7 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
 int run_daemon(const DaemonOptions& options) {
   const std::int64_t start_mono = mono_ns();
   const sigset_t signals = block_signals();
+  spdlog::info("vmassd {} starting: config {}", kVersion, options.config_path);
   ConfigLoad loaded = load_config(options.config_path);
   if (!loaded.ok()) {
     spdlog::error("{}", loaded.error);

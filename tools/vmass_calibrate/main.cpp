@@ -71,12 +71,13 @@ std::string shell_quote(const std::string& s) {
 }
 
 // True when the file is a CAN log (candump -l, Vector ASC or BLF, PEAK TRC, ASAM MDF4, ...: the
-// format found from its content), not a CSV.
+// format found from its content), not a CSV; false for a file that cannot be read.
 bool is_can_log(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string head(vmass::can::kLogFormatProbeBytes, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.empty()) return false;  // missing or empty: the CSV reader says which
   return vmass::can::detect_log_format(head) != vmass::can::LogFormat::kUnknown;
 }
 
