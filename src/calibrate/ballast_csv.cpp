@@ -100,10 +100,95 @@ bool match_column(std::string_view name, const std::string& prefix, const UnitFa
                 "' (known: " + unit_list(units) + ")");
 }
 
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
+/// The columns the header names.
+struct Columns {
+  Column mass, deflection, time, speed;
+};
+
+/// The header: which column is what, in which unit; the file's kind. Throws Failure.
+Columns read_header(const std::vector<std::string_view>& cells, std::string_view line,
+                    const std::string& where, BallastCsvKind* kind) {
+  Columns c;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const int idx = static_cast<int>(i);
+    if (match_column(cells[i], "added_mass", kMassUnits, where, idx, &c.mass)) continue;
+    if (match_column(cells[i], "rear_right_deflection", kDeflectionUnits, where, idx,
+                     &c.deflection)) {
+      continue;
+    }
+    if (match_column(cells[i], "time", kTimeUnits, where, idx, &c.time)) continue;
+    if (match_column(cells[i], "speed", kSpeedUnits, where, idx, &c.speed)) continue;
+  }
+  if (c.deflection.index < 0) {
+    throw Failure(where + ": no rear_right_deflection_<unit> column (unit one of " +
+                  unit_list(kDeflectionUnits) + ") in the header '" + std::string(line) + "'");
+  }
+  if (c.mass.index < 0 && c.time.index < 0) {
+    throw Failure(where +
+                  ": need an added_mass_<unit> column (one row per sample or step) "
+                  "or a time_<unit> column (a recording for plateau detection); header '" +
+                  std::string(line) + "'");
+  }
+  *kind = c.mass.index >= 0 ? BallastCsvKind::kSteps : BallastCsvKind::kSeries;
+  return c;
+}
+
+/// A data row's cells as SI numbers. An empty cell gives NaN when allowed; anything else must
+/// be a finite number. Throws Failure naming the file, line and column.
+class RowReader {
+ public:
+  RowReader(const std::vector<std::string_view>& cells, const std::string& where)
+      : cells_(cells), where_(where) {}
+
+  double value(const Column& c, bool empty_allowed) const {
+    if (static_cast<std::size_t>(c.index) >= cells_.size()) {
+      throw Failure(where_ + ": " + c.name + ": missing (the row has " +
+                    std::to_string(cells_.size()) + " fields)");
+    }
+    const std::string_view cell = cells_[static_cast<std::size_t>(c.index)];
+    if (cell.empty()) {
+      if (empty_allowed) return std::nan("");
+      throw Failure(where_ + ": " + c.name + ": empty cell");
+    }
+    double v = 0.0;
+    if (!parse_number(cell, &v)) {
+      throw Failure(where_ + ": " + c.name + ": '" + std::string(cell) +
+                    "' is not a number (units belong in the column name)");
+    }
+    if (std::isnan(v)) throw Failure(where_ + ": " + c.name + ": NaN");
+    if (!std::isfinite(v)) throw Failure(where_ + ": " + c.name + ": infinite value");
+    return v * c.factor;
+  }
+
+ private:
+  const std::vector<std::string_view>& cells_;
+  const std::string& where_;
+};
+
+/// One data row into the steps or the series (a series row without time or deflection is
+/// skipped, counted).
+void read_row(const RowReader& row, const Columns& c, BallastCsv* csv) {
+  if (csv->kind == BallastCsvKind::kSteps) {
+    BallastSample s;
+    s.added_mass_kg = row.value(c.mass, false);
+    s.deflection_m = row.value(c.deflection, false);
+    csv->samples.push_back(s);
+    return;
+  }
+  DeflectionPoint p;
+  p.time_s = row.value(c.time, true);
+  p.deflection_m = row.value(c.deflection, true);
+  if (c.speed.index >= 0) p.speed_mps = row.value(c.speed, true);
+  if (std::isnan(p.time_s) || std::isnan(p.deflection_m)) {
+    ++csv->skipped_rows;
+    return;
+  }
+  csv->series.push_back(p);
+}
+
 BallastCsv parse(std::string_view text, const std::string& name) {
   BallastCsv csv;
-  Column mass, deflection, time, speed;
+  Columns columns;
   bool have_header = false;
   std::size_t pos = 0;
   long line_number = 0;
@@ -117,73 +202,12 @@ BallastCsv parse(std::string_view text, const std::string& name) {
     if (line.empty() || line.front() == '#') continue;
     const std::string where = name + ":" + std::to_string(line_number);
     const std::vector<std::string_view> cells = split(line);
-
     if (!have_header) {
       have_header = true;
-      for (std::size_t i = 0; i < cells.size(); ++i) {
-        const int idx = static_cast<int>(i);
-        if (match_column(cells[i], "added_mass", kMassUnits, where, idx, &mass)) continue;
-        if (match_column(cells[i], "rear_right_deflection", kDeflectionUnits, where, idx,
-                         &deflection)) {
-          continue;
-        }
-        if (match_column(cells[i], "time", kTimeUnits, where, idx, &time)) continue;
-        if (match_column(cells[i], "speed", kSpeedUnits, where, idx, &speed)) continue;
-      }
-      if (deflection.index < 0) {
-        throw Failure(where + ": no rear_right_deflection_<unit> column (unit one of " +
-                      unit_list(kDeflectionUnits) + ") in the header '" + std::string(line) + "'");
-      }
-      if (mass.index < 0 && time.index < 0) {
-        throw Failure(where +
-                      ": need an added_mass_<unit> column (one row per sample or step) "
-                      "or a time_<unit> column (a recording for plateau detection); header '" +
-                      std::string(line) + "'");
-      }
-      csv.kind = mass.index >= 0 ? BallastCsvKind::kSteps : BallastCsvKind::kSeries;
+      columns = read_header(cells, line, where, &csv.kind);
       continue;
     }
-
-    auto cell_of = [&](const Column& c) -> std::string_view {
-      if (static_cast<std::size_t>(c.index) >= cells.size()) {
-        throw Failure(where + ": " + c.name + ": missing (the row has " +
-                      std::to_string(cells.size()) + " fields)");
-      }
-      return cells[static_cast<std::size_t>(c.index)];
-    };
-    // An empty cell gives NaN when allowed; anything else must be a finite number.
-    auto value_of = [&](const Column& c, bool empty_allowed) -> double {
-      const std::string_view cell = cell_of(c);
-      if (cell.empty()) {
-        if (empty_allowed) return std::nan("");
-        throw Failure(where + ": " + c.name + ": empty cell");
-      }
-      double v = 0.0;
-      if (!parse_number(cell, &v)) {
-        throw Failure(where + ": " + c.name + ": '" + std::string(cell) +
-                      "' is not a number (units belong in the column name)");
-      }
-      if (std::isnan(v)) throw Failure(where + ": " + c.name + ": NaN");
-      if (!std::isfinite(v)) throw Failure(where + ": " + c.name + ": infinite value");
-      return v * c.factor;
-    };
-
-    if (csv.kind == BallastCsvKind::kSteps) {
-      BallastSample s;
-      s.added_mass_kg = value_of(mass, false);
-      s.deflection_m = value_of(deflection, false);
-      csv.samples.push_back(s);
-    } else {
-      DeflectionPoint p;
-      p.time_s = value_of(time, true);
-      p.deflection_m = value_of(deflection, true);
-      if (speed.index >= 0) p.speed_mps = value_of(speed, true);
-      if (std::isnan(p.time_s) || std::isnan(p.deflection_m)) {
-        ++csv.skipped_rows;
-        continue;
-      }
-      csv.series.push_back(p);
-    }
+    read_row(RowReader(cells, where), columns, &csv);
   }
   if (!have_header) throw Failure(name + ": empty file (no header)");
   if (csv.kind == BallastCsvKind::kSteps ? csv.samples.empty() : csv.series.empty()) {

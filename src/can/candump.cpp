@@ -25,119 +25,114 @@ CandumpLine corrupt(std::string* error, const char* why) {
   return CandumpLine::kCorrupt;
 }
 
-}  // namespace
+// Each part of a line: nullptr when it parsed, else why the line is corrupt.
 
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
-CandumpLine parse_candump_line(std::string_view line, CandumpRecord* record, std::string* error) {
-  while (!line.empty() && (line.back() == '\r' || line.back() == '\n' || is_blank(line.back()))) {
-    line.remove_suffix(1);
-  }
-  std::size_t p = 0;
-  while (p < line.size() && is_blank(line[p])) ++p;
-  if (p == line.size() || line[p] == '#' || line[p] == ';') return CandumpLine::kComment;
-
-  // (SECONDS.FRACTION)
-  if (line[p] != '(') return corrupt(error, "expected '(' opening the timestamp");
+/// (SECONDS.FRACTION): 1..12 digits, then 6 or 9 fractional digits (9: nanoseconds).
+const char* parse_timestamp(std::string_view line, std::size_t* at, std::int64_t* time_us) {
+  std::size_t p = *at;
+  if (line[p] != '(') return "expected '(' opening the timestamp";
   ++p;
   const std::size_t sec_begin = p;
   while (p < line.size() && line[p] >= '0' && line[p] <= '9') ++p;
   const std::size_t sec_digits = p - sec_begin;
-  if (sec_digits == 0 || sec_digits > 12)
-    return corrupt(error, "expected seconds in the timestamp");
-  if (p >= line.size() || line[p] != '.') return corrupt(error, "expected '.' in the timestamp");
+  if (sec_digits == 0 || sec_digits > 12) return "expected seconds in the timestamp";
+  if (p >= line.size() || line[p] != '.') return "expected '.' in the timestamp";
   ++p;
   const std::size_t frac_begin = p;
   while (p < line.size() && line[p] >= '0' && line[p] <= '9') ++p;
   const std::size_t frac_digits = p - frac_begin;
-  if (frac_digits != 6 && frac_digits != 9) {
-    return corrupt(error, "timestamp needs 6 or 9 fractional digits");
-  }
-  if (p >= line.size() || line[p] != ')') return corrupt(error, "expected ')' after the timestamp");
-  ++p;
+  if (frac_digits != 6 && frac_digits != 9) return "timestamp needs 6 or 9 fractional digits";
+  if (p >= line.size() || line[p] != ')') return "expected ')' after the timestamp";
   std::int64_t sec = 0, frac = 0;
   std::from_chars(line.data() + sec_begin, line.data() + sec_begin + sec_digits, sec);
   std::from_chars(line.data() + frac_begin, line.data() + frac_begin + frac_digits, frac);
   if (frac_digits == 9) frac /= 1000;
+  *time_us = sec * 1000000 + frac;
+  *at = p + 1;
+  return nullptr;
+}
 
-  // INTERFACE
-  if (p >= line.size() || !is_blank(line[p])) return corrupt(error, "expected a blank after ')'");
+/// INTERFACE FRAME [R|T]: the interface name, the frame token and the optional direction.
+const char* split_fields(std::string_view line, std::size_t p, std::string_view* iface,
+                         std::string_view* frame, char* direction) {
+  if (p >= line.size() || !is_blank(line[p])) return "expected a blank after ')'";
   while (p < line.size() && is_blank(line[p])) ++p;
   const std::size_t if_begin = p;
   while (p < line.size() && !is_blank(line[p])) ++p;
-  if (p == if_begin) return corrupt(error, "expected an interface name");
-  const std::string_view iface = line.substr(if_begin, p - if_begin);
+  if (p == if_begin) return "expected an interface name";
+  *iface = line.substr(if_begin, p - if_begin);
   while (p < line.size() && is_blank(line[p])) ++p;
-
-  // FRAME, then an optional direction.
   std::size_t end = p;
   while (end < line.size() && !is_blank(line[end])) ++end;
-  const std::string_view tok = line.substr(p, end - p);
+  *frame = line.substr(p, end - p);
   std::size_t q = end;
   while (q < line.size() && is_blank(line[q])) ++q;
-  char direction = '\0';
+  *direction = '\0';
   if (q < line.size()) {
-    if (q + 1 == line.size() && (line[q] == 'R' || line[q] == 'T')) {
-      direction = line[q];
-    } else {
-      return corrupt(error, "unexpected text after the frame");
+    if (q + 1 != line.size() || (line[q] != 'R' && line[q] != 'T')) {
+      return "unexpected text after the frame";
     }
+    *direction = line[q];
   }
-  if (tok.empty()) return corrupt(error, "expected a frame after the interface");
+  if (frame->empty()) return "expected a frame after the interface";
+  return nullptr;
+}
 
-  CanFrame f;
-  f.time_us = sec * 1000000 + frac;
-  const std::size_t hash = tok.find('#');
-  if (hash == std::string_view::npos) return corrupt(error, "expected '#' after the CAN id");
-  if (hash != 3 && hash != 8) return corrupt(error, "CAN id must have 3 or 8 hex digits");
+/// The id before '#': 3 hex digits (11 bit), or 8 (29 bit, or an error frame's class).
+const char* parse_id(std::string_view tok, std::size_t hash, CanFrame* f) {
+  if (hash == std::string_view::npos) return "expected '#' after the CAN id";
+  if (hash != 3 && hash != 8) return "CAN id must have 3 or 8 hex digits";
   std::uint32_t id = 0;
   for (std::size_t i = 0; i < hash; ++i) {
     const int h = hex_value(tok[i]);
-    if (h < 0) return corrupt(error, "CAN id is not hexadecimal");
+    if (h < 0) return "CAN id is not hexadecimal";
     id = (id << 4) | static_cast<std::uint32_t>(h);
   }
   if (hash == 3) {
-    if (id > kSffMask) return corrupt(error, "11-bit CAN id above 7FF");
-    f.id = id;
+    if (id > kSffMask) return "11-bit CAN id above 7FF";
+    f->id = id;
   } else if (id & kErrFlag) {
-    if (id & ~(kErrFlag | kErrMask)) return corrupt(error, "error frame id has extra flag bits");
-    f.id = id & kErrMask;
-    f.flags = kError;
+    if (id & ~(kErrFlag | kErrMask)) return "error frame id has extra flag bits";
+    f->id = id & kErrMask;
+    f->flags = kError;
   } else {
-    if (id > kEffMask) return corrupt(error, "29-bit CAN id above 1FFFFFFF");
-    f.id = id;
-    f.flags = kExtended;
+    if (id > kEffMask) return "29-bit CAN id above 1FFFFFFF";
+    f->id = id;
+    f->flags = kExtended;
   }
+  return nullptr;
+}
 
-  std::size_t d = hash + 1;
-  int max_len = kClassicMaxLen;
-  if (d < tok.size() && tok[d] == '#') {  // CAN FD
-    if (f.flags & kError) return corrupt(error, "error frames are not CAN FD");
-    ++d;
-    if (d >= tok.size()) return corrupt(error, "expected the CAN FD flags digit after '##'");
-    const int fl = hex_value(tok[d]);
-    if (fl < 0) return corrupt(error, "CAN FD flags digit is not hexadecimal");
-    f.flags = static_cast<std::uint8_t>(f.flags | kFd | ((fl & 1) ? kFdBrs : 0) |
-                                        ((fl & 2) ? kFdEsi : 0) | ((fl & 4) ? kFdFdf : 0));
-    ++d;
-    max_len = kFdMaxLen;
-  } else if (d < tok.size() && tok[d] == 'R') {  // remote request
-    if (f.flags & kError) return corrupt(error, "error frames have no remote form");
-    ++d;
-    f.flags = static_cast<std::uint8_t>(f.flags | kRemote);
-    if (d < tok.size()) {
-      const int l = hex_value(tok[d]);
-      if (l < 0 || l > kClassicMaxLen || d + 1 != tok.size()) {
-        return corrupt(error, "remote frame length must be one digit 0..8");
-      }
-      f.len = static_cast<std::uint8_t>(l);
+/// After '##': the CAN FD flags digit (BRS, ESI, FDF).
+const char* parse_fd_flags(std::string_view tok, std::size_t* d, CanFrame* f) {
+  if (f->flags & kError) return "error frames are not CAN FD";
+  ++*d;
+  if (*d >= tok.size()) return "expected the CAN FD flags digit after '##'";
+  const int fl = hex_value(tok[*d]);
+  if (fl < 0) return "CAN FD flags digit is not hexadecimal";
+  f->flags = static_cast<std::uint8_t>(f->flags | kFd | ((fl & 1) ? kFdBrs : 0) |
+                                       ((fl & 2) ? kFdEsi : 0) | ((fl & 4) ? kFdFdf : 0));
+  ++*d;
+  return nullptr;
+}
+
+/// After '#R': a remote request, with an optional length digit.
+const char* parse_remote(std::string_view tok, std::size_t d, CanFrame* f) {
+  if (f->flags & kError) return "error frames have no remote form";
+  ++d;
+  f->flags = static_cast<std::uint8_t>(f->flags | kRemote);
+  if (d < tok.size()) {
+    const int l = hex_value(tok[d]);
+    if (l < 0 || l > kClassicMaxLen || d + 1 != tok.size()) {
+      return "remote frame length must be one digit 0..8";
     }
-    if (record) {
-      record->frame = f;
-      record->interface = iface;
-      record->direction = direction;
-    }
-    return CandumpLine::kFrame;
+    f->len = static_cast<std::uint8_t>(l);
   }
+  return nullptr;
+}
+
+/// The data bytes from tok[d]: hex pairs, '.' separators, a classic frame's "_D" raw DLC.
+const char* parse_data(std::string_view tok, std::size_t d, int max_len, CanFrame* f) {
   int len = 0;
   while (d < tok.size()) {
     if (tok[d] == '.') {
@@ -147,25 +142,59 @@ CandumpLine parse_candump_line(std::string_view line, CandumpRecord* record, std
     if (tok[d] == '_' && max_len == kClassicMaxLen && len == kClassicMaxLen) {
       // raw DLC 9..F of an 8-byte classic frame (len8_dlc)
       if (d + 2 != tok.size() || hex_value(tok[d + 1]) < 9) {
-        return corrupt(error, "expected '_' followed by a DLC digit 9..F");
+        return "expected '_' followed by a DLC digit 9..F";
       }
       break;
     }
-    if (d + 1 >= tok.size()) return corrupt(error, "odd number of hex digits in the data");
+    if (d + 1 >= tok.size()) return "odd number of hex digits in the data";
     const int hi = hex_value(tok[d]);
     const int lo = hex_value(tok[d + 1]);
-    if (hi < 0 || lo < 0) return corrupt(error, "data is not hexadecimal");
+    if (hi < 0 || lo < 0) return "data is not hexadecimal";
     if (len >= max_len) {
-      return corrupt(error, max_len == kFdMaxLen ? "more than 64 data bytes"
-                                                 : "more than 8 data bytes in a classic frame");
+      return max_len == kFdMaxLen ? "more than 64 data bytes"
+                                  : "more than 8 data bytes in a classic frame";
     }
-    f.data[len++] = static_cast<std::uint8_t>(hi * 16 + lo);
+    f->data[len++] = static_cast<std::uint8_t>(hi * 16 + lo);
     d += 2;
   }
-  if ((f.flags & kFd) && !is_valid_fd_length(len)) {
-    return corrupt(error, "CAN FD length is not one of 0..8, 12, 16, 20, 24, 32, 48, 64");
+  if ((f->flags & kFd) && !is_valid_fd_length(len)) {
+    return "CAN FD length is not one of 0..8, 12, 16, 20, 24, 32, 48, 64";
   }
-  f.len = static_cast<std::uint8_t>(len);
+  f->len = static_cast<std::uint8_t>(len);
+  return nullptr;
+}
+
+/// ID#DATA, ID##FDATA or ID#R[LEN].
+const char* parse_frame(std::string_view tok, CanFrame* f) {
+  const std::size_t hash = tok.find('#');
+  if (const char* why = parse_id(tok, hash, f)) return why;
+  std::size_t d = hash + 1;
+  if (d < tok.size() && tok[d] == 'R') return parse_remote(tok, d, f);
+  int max_len = kClassicMaxLen;
+  if (d < tok.size() && tok[d] == '#') {
+    if (const char* why = parse_fd_flags(tok, &d, f)) return why;
+    max_len = kFdMaxLen;
+  }
+  return parse_data(tok, d, max_len, f);
+}
+
+}  // namespace
+
+CandumpLine parse_candump_line(std::string_view line, CandumpRecord* record, std::string* error) {
+  while (!line.empty() && (line.back() == '\r' || line.back() == '\n' || is_blank(line.back()))) {
+    line.remove_suffix(1);
+  }
+  std::size_t p = 0;
+  while (p < line.size() && is_blank(line[p])) ++p;
+  if (p == line.size() || line[p] == '#' || line[p] == ';') return CandumpLine::kComment;
+  CanFrame f;
+  std::string_view iface, tok;
+  char direction = '\0';
+  if (const char* why = parse_timestamp(line, &p, &f.time_us)) return corrupt(error, why);
+  if (const char* why = split_fields(line, p, &iface, &tok, &direction)) {
+    return corrupt(error, why);
+  }
+  if (const char* why = parse_frame(tok, &f)) return corrupt(error, why);
   if (record) {
     record->frame = f;
     record->interface = iface;

@@ -114,107 +114,130 @@ bool compile_signal(const Signal& sg, int length_bytes, CompiledSignal& out, std
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
+namespace {
+
+/// Visiting order of a message's signals: by depth in the multiplexor tree (switches before
+/// what they select), DBC order within a depth. "" or why the tree is not one.
+std::string visiting_order(const Message& m, std::vector<std::uint16_t>* order) {
+  std::vector<int> depth(m.signals.size(), 0);
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    int p = m.signals[i].mux_parent;
+    while (p >= 0 && depth[i] <= static_cast<int>(m.signals.size())) {
+      ++depth[i];
+      p = m.signals[static_cast<std::size_t>(p)].mux_parent;
+    }
+    if (p >= 0) return "signal " + m.signals[i].name + ": multiplexor chain loops";
+  }
+  order->resize(m.signals.size());
+  for (std::size_t i = 0; i < order->size(); ++i) (*order)[i] = static_cast<std::uint16_t>(i);
+  std::stable_sort(order->begin(), order->end(),
+                   [&](std::uint16_t a, std::uint16_t b) { return depth[a] < depth[b]; });
+  return "";
+}
+
+}  // namespace
+
+std::string Decoder::compile_signal_of(const Message& m, const Signal& sg, int* switches,
+                                       bool* word_path) {
+  CompiledSignal cs;
+  std::string why;
+  if (!compile_signal(sg, m.length, cs, why)) {
+    return "signal " + sg.name + " of message " + m.name + ": " + why;
+  }
+  if (sg.is_multiplexor) {
+    if (*switches >= kMaxSwitches)
+      return "message " + m.name + " has more than 16 multiplexor switches";
+    cs.switch_slot = static_cast<std::int8_t>((*switches)++);
+  }
+  if (sg.mux_parent >= 0) {
+    if (static_cast<std::size_t>(sg.mux_parent) >= m.signals.size() ||
+        !m.signals[static_cast<std::size_t>(sg.mux_parent)].is_multiplexor) {
+      return "signal " + sg.name + " of message " + m.name + ": its multiplexor is not a switch";
+    }
+    if (sg.mux_ranges.empty()) {
+      return "signal " + sg.name + " of message " + m.name + ": no multiplexor value";
+    }
+    cs.mux_parent = static_cast<std::int16_t>(sg.mux_parent);
+    cs.range_begin = static_cast<std::uint16_t>(ranges_.size());
+    cs.range_count = static_cast<std::uint16_t>(sg.mux_ranges.size());
+    ranges_.insert(ranges_.end(), sg.mux_ranges.begin(), sg.mux_ranges.end());
+    if (ranges_.size() > 0xFFFF) return "too many multiplexor ranges";
+  }
+  WordSignal ws;
+  if (!word_signal(sg, ws)) *word_path = false;
+  signals_.push_back(cs);
+  word_signals_.push_back(ws);
+  return "";
+}
+
+std::string Decoder::compile_message(std::size_t mi) {
+  const Message& m = db_.messages[mi];
+  if (m.length < 0 || m.length > kFdMaxLen) {
+    return "message " + m.name + ": length " + std::to_string(m.length);
+  }
+  if (m.signals.size() > 0xFFFF) return "message " + m.name + ": too many signals";
+  CompiledMessage cm;
+  cm.signal_begin = static_cast<std::uint32_t>(signals_.size());
+  cm.signal_count = static_cast<std::uint32_t>(m.signals.size());
+  cm.order_begin = static_cast<std::uint32_t>(order_.size());
+  cm.length = static_cast<std::uint8_t>(m.length);
+  int switches = 0;
+  bool word_path = m.length <= kClassicMaxLen;
+  for (const Signal& sg : m.signals) {
+    if (std::string e = compile_signal_of(m, sg, &switches, &word_path); !e.empty()) return e;
+  }
+  cm.switch_count = static_cast<std::uint8_t>(switches);
+  cm.frame_word = switches == 0 && word_path;
+  std::vector<std::uint16_t> order;
+  if (std::string e = visiting_order(m, &order); !e.empty()) return e;
+  order_.insert(order_.end(), order.begin(), order.end());
+  messages_.push_back(cm);
+  max_signals_ = std::max(max_signals_, static_cast<int>(m.signals.size()));
+  if (m.extended) {
+    extended_.emplace_back(m.id, static_cast<int>(mi));
+  } else if (m.id <= kSffMask) {
+    if (standard_[m.id] >= 0) return "message " + m.name + ": duplicate id";
+    standard_[m.id] = static_cast<std::int16_t>(mi);
+  } else {
+    return "message " + m.name + ": standard id above 0x7FF";
+  }
+  return "";
+}
+
+std::string Decoder::index_extended_ids() {
+  std::sort(extended_.begin(), extended_.end());
+  for (std::size_t i = 1; i < extended_.size(); ++i) {
+    if (extended_[i].first == extended_[i - 1].first) {
+      return "message " + db_.messages[static_cast<std::size_t>(extended_[i].second)].name +
+             ": duplicate extended id";
+    }
+  }
+  // Open addressing, at most half full: a lookup ends at the id or at an empty slot.
+  unsigned bits = 1;
+  while ((std::size_t{1} << bits) < 2 * extended_.size()) ++bits;
+  extended_hash_bits_ = bits;
+  extended_hash_.assign(std::size_t{1} << bits, {0u, -1});
+  for (const auto& [id, index] : extended_) {
+    std::size_t slot = (id * 2654435769u) >> (32 - bits);
+    while (extended_hash_[slot].second >= 0) slot = (slot + 1) & (extended_hash_.size() - 1);
+    extended_hash_[slot] = {id, index};
+  }
+  return "";
+}
+
 std::optional<Decoder> Decoder::compile(Database database, std::string* error) {
   Decoder d;
   d.db_ = std::move(database);
   d.standard_.fill(-1);
-  auto failed = [&](const std::string& what) {
-    if (error) *error = what;
-    return std::optional<Decoder>();
-  };
-  for (std::size_t mi = 0; mi < d.db_.messages.size(); ++mi) {
-    const Message& m = d.db_.messages[mi];
-    if (m.length < 0 || m.length > kFdMaxLen) {
-      return failed("message " + m.name + ": length " + std::to_string(m.length));
-    }
-    if (m.signals.size() > 0xFFFF) return failed("message " + m.name + ": too many signals");
-    CompiledMessage cm;
-    cm.signal_begin = static_cast<std::uint32_t>(d.signals_.size());
-    cm.signal_count = static_cast<std::uint32_t>(m.signals.size());
-    cm.order_begin = static_cast<std::uint32_t>(d.order_.size());
-    cm.length = static_cast<std::uint8_t>(m.length);
-    int switches = 0;
-    bool word_path = m.length <= kClassicMaxLen;
-    for (const Signal& sg : m.signals) {
-      CompiledSignal cs;
-      std::string why;
-      if (!compile_signal(sg, m.length, cs, why)) {
-        return failed("signal " + sg.name + " of message " + m.name + ": " + why);
-      }
-      if (sg.is_multiplexor) {
-        if (switches >= kMaxSwitches) {
-          return failed("message " + m.name + " has more than 16 multiplexor switches");
-        }
-        cs.switch_slot = static_cast<std::int8_t>(switches++);
-      }
-      if (sg.mux_parent >= 0) {
-        if (static_cast<std::size_t>(sg.mux_parent) >= m.signals.size() ||
-            !m.signals[static_cast<std::size_t>(sg.mux_parent)].is_multiplexor) {
-          return failed("signal " + sg.name + " of message " + m.name +
-                        ": its multiplexor is not a switch");
-        }
-        if (sg.mux_ranges.empty()) {
-          return failed("signal " + sg.name + " of message " + m.name + ": no multiplexor value");
-        }
-        cs.mux_parent = static_cast<std::int16_t>(sg.mux_parent);
-        cs.range_begin = static_cast<std::uint16_t>(d.ranges_.size());
-        cs.range_count = static_cast<std::uint16_t>(sg.mux_ranges.size());
-        d.ranges_.insert(d.ranges_.end(), sg.mux_ranges.begin(), sg.mux_ranges.end());
-        if (d.ranges_.size() > 0xFFFF) return failed("too many multiplexor ranges");
-      }
-      WordSignal ws;
-      if (!word_signal(sg, ws)) word_path = false;
-      d.signals_.push_back(cs);
-      d.word_signals_.push_back(ws);
-    }
-    cm.switch_count = static_cast<std::uint8_t>(switches);
-    cm.frame_word = switches == 0 && word_path;
-    // Visiting order: by depth in the multiplexor tree (switches before what they select),
-    // DBC order within a depth.
-    std::vector<int> depth(m.signals.size(), 0);
-    for (std::size_t i = 0; i < m.signals.size(); ++i) {
-      int p = m.signals[i].mux_parent;
-      while (p >= 0 && depth[i] <= static_cast<int>(m.signals.size())) {
-        ++depth[i];
-        p = m.signals[static_cast<std::size_t>(p)].mux_parent;
-      }
-      if (p >= 0) return failed("signal " + m.signals[i].name + ": multiplexor chain loops");
-    }
-    std::vector<std::uint16_t> order(m.signals.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint16_t>(i);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::uint16_t a, std::uint16_t b) { return depth[a] < depth[b]; });
-    d.order_.insert(d.order_.end(), order.begin(), order.end());
-    d.messages_.push_back(cm);
-    d.max_signals_ = std::max(d.max_signals_, static_cast<int>(m.signals.size()));
-
-    if (m.extended) {
-      d.extended_.emplace_back(m.id, static_cast<int>(mi));
-    } else if (m.id <= kSffMask) {
-      if (d.standard_[m.id] >= 0) return failed("message " + m.name + ": duplicate id");
-      d.standard_[m.id] = static_cast<std::int16_t>(mi);
-    } else {
-      return failed("message " + m.name + ": standard id above 0x7FF");
-    }
+  std::string why;
+  for (std::size_t mi = 0; mi < d.db_.messages.size() && why.empty(); ++mi) {
+    why = d.compile_message(mi);
   }
-  if (d.db_.messages.size() > 0x7FFF) return failed("too many messages");
-  std::sort(d.extended_.begin(), d.extended_.end());
-  for (std::size_t i = 1; i < d.extended_.size(); ++i) {
-    if (d.extended_[i].first == d.extended_[i - 1].first) {
-      return failed("message " +
-                    d.db_.messages[static_cast<std::size_t>(d.extended_[i].second)].name +
-                    ": duplicate extended id");
-    }
-  }
-  unsigned bits = 1;
-  while ((std::size_t{1} << bits) < 2 * d.extended_.size()) ++bits;
-  d.extended_hash_bits_ = bits;
-  d.extended_hash_.assign(std::size_t{1} << bits, {0u, -1});
-  for (const auto& [id, index] : d.extended_) {
-    std::size_t slot = (id * 2654435769u) >> (32 - bits);
-    while (d.extended_hash_[slot].second >= 0) slot = (slot + 1) & (d.extended_hash_.size() - 1);
-    d.extended_hash_[slot] = {id, index};
+  if (why.empty() && d.db_.messages.size() > 0x7FFF) why = "too many messages";
+  if (why.empty()) why = d.index_extended_ids();
+  if (!why.empty()) {
+    if (error) *error = why;
+    return std::nullopt;
   }
   return d;
 }

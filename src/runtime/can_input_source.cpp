@@ -12,7 +12,7 @@ void CanInputSource::sync_counters() {
   counters_.reopens.store(frames_->reopens(), std::memory_order_relaxed);
 }
 
-InputSource::Read CanInputSource::read(int timeout_ms) {
+InputSource::Read CanInputSource::next_record(int timeout_ms) {
   const std::int64_t malformed_before = frames_->malformed();
   const FrameSource::Read r = frames_->read(&frame_, timeout_ms);
   const std::int64_t bad_records = frames_->malformed() - malformed_before;
@@ -38,7 +38,7 @@ InputSource::Read CanInputSource::read(int timeout_ms) {
   return Read::kTimeout;
 }
 
-void CanInputSource::fetch(InputRecord* record) const {
+void CanInputSource::copy_record(InputRecord* record) const {
   record->time_us = frame_.time_us;
   record->frame = frame_;
 }

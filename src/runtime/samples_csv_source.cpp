@@ -17,7 +17,7 @@ std::unique_ptr<SamplesCsvSource> SamplesCsvSource::open(const std::string& path
   return source;
 }
 
-InputSource::Read SamplesCsvSource::read(int /*timeout_ms*/) {
+InputSource::Read SamplesCsvSource::next_record(int /*timeout_ms*/) {
   const long skipped_before = reader_.skipped_rows();
   std::optional<Sample> row = reader_.next();
   const long skipped = reader_.skipped_rows() - skipped_before;
@@ -34,7 +34,7 @@ InputSource::Read SamplesCsvSource::read(int /*timeout_ms*/) {
   return Read::kRecord;
 }
 
-void SamplesCsvSource::fetch(InputRecord* record) const {
+void SamplesCsvSource::copy_record(InputRecord* record) const {
   record->time_us = record_.time_us;
   record->sample = record_;
 }

@@ -9,7 +9,8 @@ TickDriver::TickDriver(InputSource& source, double tick_rate_hz)
 
 TickRun TickDriver::run(TickClock& clock, const OnTick& on_tick) {
   TickRun run;
-  bool pending = source_.read(0) == InputSource::Read::kRecord;  // the next record, not applied
+  bool pending =
+      source_.next_record(0) == InputSource::Read::kRecord;  // the next record, not applied
   if (!pending) return run;
   run.any_record = true;
   run.first_record_us = source_.record_time_us();
@@ -25,9 +26,9 @@ TickRun TickDriver::run(TickClock& clock, const OnTick& on_tick) {
     }
     while (pending && source_.record_time_us() <= t) {
       run.latest_record_us = std::max(run.latest_record_us, source_.record_time_us());
-      source_.fetch(&record);
+      source_.copy_record(&record);
       source_.apply(record);
-      pending = source_.read(0) == InputSource::Read::kRecord;
+      pending = source_.next_record(0) == InputSource::Read::kRecord;
     }
     if (!pending && t > run.latest_record_us) break;
     on_tick(k, t);

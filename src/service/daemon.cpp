@@ -338,7 +338,7 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
   const bool restored = !state_file.empty() && !r.options.no_restore &&
                         restore_state(state_file, fingerprint, step.pipeline());
   if (r.plan.recorded && !r.plan.max_speed) {  // at max speed the tick driver reads it
-    r.plan.has_first_record = r.source.read(0) == runtime::InputSource::Read::kRecord;
+    r.plan.has_first_record = r.source.next_record(0) == runtime::InputSource::Read::kRecord;
     r.plan.t0_us = r.plan.has_first_record ? r.source.record_time_us() : 0;
     if (!r.plan.has_first_record) spdlog::warn("{}: no records", r.source.describe());
   }

@@ -83,9 +83,9 @@ void receive_recording(runtime::InputSource& source, Shared& shared, const Plan&
         static_cast<std::int64_t>(static_cast<double>(source.record_time_us() - plan.t0_us) *
                                   1000.0 / plan.speed);
     if (!sleep_until(due, shared.stop)) return;
-    source.fetch(&record);
+    source.copy_record(&record);
     push_input(record, shared, true);
-    if (source.read(0) != runtime::InputSource::Read::kRecord) break;
+    if (source.next_record(0) != runtime::InputSource::Read::kRecord) break;
     // A log in time order: every record stamped before the next one has been pushed.
     shared.pushed_through_us.store(source.record_time_us() - 1, std::memory_order_release);
   }
@@ -96,9 +96,9 @@ void receive_recording(runtime::InputSource& source, Shared& shared, const Plan&
 void receive_live(runtime::InputSource& source, Shared& shared, const Plan& plan) {
   runtime::InputRecord record;
   while (!shared.stop.load(std::memory_order_relaxed)) {
-    switch (source.read(100)) {
+    switch (source.next_record(100)) {
       case runtime::InputSource::Read::kRecord:
-        source.fetch(&record);
+        source.copy_record(&record);
         record.time_us = live_time_us(record.time_us, plan);
         push_input(record, shared, false);
         break;

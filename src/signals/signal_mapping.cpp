@@ -66,7 +66,76 @@ struct TermContext {
   double timeout_s = 0.0;
 };
 
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
+/// The page of a multiplexed signal (mux:): must be named, and must select the signal.
+void read_mux(YamlReader& t, const can::Message& msg, const can::Signal& sig, int m,
+              const std::string& what, MappedSignal* out) {
+  const bool has_mux = t.has("mux");
+  int mux = 0;
+  t.read("mux", &mux);
+  if (sig.mux_parent < 0) {
+    if (has_mux) t.fail("mux", "signal " + quoted(what) + " is not multiplexed; remove mux:");
+    return;
+  }
+  const can::Signal& sw = msg.signals[static_cast<std::size_t>(sig.mux_parent)];
+  if (!has_mux) {
+    t.fail("mux", "signal " + quoted(what) + " is multiplexed by " + quoted(sw.name) + " (pages " +
+                      pages(sig) + "): give the page to accept, e.g. mux: " +
+                      std::to_string(sig.mux_ranges.empty() ? 0 : sig.mux_ranges[0].lo));
+  }
+  bool selects = false;
+  for (const can::MuxRange& r : sig.mux_ranges) {
+    if (mux >= 0 && static_cast<std::uint64_t>(mux) >= r.lo &&
+        static_cast<std::uint64_t>(mux) <= r.hi) {
+      selects = true;
+    }
+  }
+  if (!selects) {
+    t.fail("mux", sw.name + " = " + std::to_string(mux) + " does not select " + quoted(what) +
+                      " (pages " + pages(sig) + ")");
+  }
+  out->mux_switch = can::SignalRef{m, sig.mux_parent};
+  out->mux_value = static_cast<std::uint64_t>(mux);
+}
+
+/// Units: the DBC's (or the unit: override), converted to SI by the table; gain: on top, or
+/// the whole conversion for a unit the table does not know.
+void read_units(YamlReader& t, const can::Signal& sig, Input input, const std::string& what,
+                MappedSignal* out) {
+  const bool has_unit = t.has("unit");
+  out->unit = sig.unit;
+  t.read("unit", &out->unit);
+  const bool has_gain = t.has("gain");
+  t.read("gain", &out->gain);
+  if (has_gain && !(std::isfinite(out->gain) && out->gain != 0.0)) {
+    t.fail("gain", "must be a finite number other than 0");
+  }
+  const Dimension need = input_dimension(input);
+  const std::string unit_key = has_unit ? "unit" : "signal";
+  const std::string source = has_unit            ? "unit " + quoted(out->unit)
+                             : out->unit.empty() ? what + " has no unit"
+                                                 : what + " has unit " + quoted(out->unit);
+  std::optional<UnitConversion> conv = find_unit(out->unit);
+  const bool unitless = conv && conv->dimension == Dimension::kDimensionless;
+  if (unitless && need != Dimension::kDimensionless) {
+    conv.reset();  // a unitless signal for a physical input: its conversion must be given
+  }
+  if (conv) {
+    if (conv->dimension != need) {
+      t.fail(unit_key, source + ", " + with_article(dimension_name(conv->dimension)) + "; " +
+                           std::string(input_name(input)) + " needs " +
+                           with_article(dimension_name(need)) + " (" + units_of(need) + ")" +
+                           (has_unit ? "" : "; unit: overrides the DBC's unit"));
+    }
+    out->unit_scale = conv->scale;
+  } else if (!has_gain) {
+    t.fail(unit_key, source + (unitless ? "" : ", which is not in the unit table") +
+                         ": give gain: (" + std::string(si_unit(need)) +
+                         " per DBC unit) or unit: (one of " + units_of(need) + ")");
+  } else {
+    out->unit_scale = 1.0;  // the gain is the whole conversion
+  }
+}
+
 MappedSignal parse_term(YamlReader& t, const TermContext& ctx) {
   MappedSignal out;
   t.require("message", &out.message);
@@ -88,71 +157,8 @@ MappedSignal parse_term(YamlReader& t, const TermContext& ctx) {
   const can::Signal& sig = msg.signals[static_cast<std::size_t>(s)];
   out.ref = can::SignalRef{m, s};
   const std::string what = out.message + "." + out.signal;
-
-  // Multiplexing: the page must be named, and must select the signal.
-  const bool has_mux = t.has("mux");
-  int mux = 0;
-  t.read("mux", &mux);
-  if (sig.mux_parent >= 0) {
-    const can::Signal& sw = msg.signals[static_cast<std::size_t>(sig.mux_parent)];
-    if (!has_mux) {
-      t.fail("mux", "signal " + quoted(what) + " is multiplexed by " + quoted(sw.name) +
-                        " (pages " + pages(sig) + "): give the page to accept, e.g. mux: " +
-                        std::to_string(sig.mux_ranges.empty() ? 0 : sig.mux_ranges[0].lo));
-    }
-    bool selects = false;
-    for (const can::MuxRange& r : sig.mux_ranges) {
-      if (mux >= 0 && static_cast<std::uint64_t>(mux) >= r.lo &&
-          static_cast<std::uint64_t>(mux) <= r.hi) {
-        selects = true;
-      }
-    }
-    if (!selects) {
-      t.fail("mux", sw.name + " = " + std::to_string(mux) + " does not select " + quoted(what) +
-                        " (pages " + pages(sig) + ")");
-    }
-    out.mux_switch = can::SignalRef{m, sig.mux_parent};
-    out.mux_value = static_cast<std::uint64_t>(mux);
-  } else if (has_mux) {
-    t.fail("mux", "signal " + quoted(what) + " is not multiplexed; remove mux:");
-  }
-
-  // Units: the DBC's (or the override), converted by the table; a gain on top.
-  const bool has_unit = t.has("unit");
-  out.unit = sig.unit;
-  t.read("unit", &out.unit);
-  const bool has_gain = t.has("gain");
-  t.read("gain", &out.gain);
-  if (has_gain && !(std::isfinite(out.gain) && out.gain != 0.0)) {
-    t.fail("gain", "must be a finite number other than 0");
-  }
-  const Dimension need = input_dimension(ctx.input);
-  const std::string unit_key = has_unit ? "unit" : "signal";
-  const std::string source = has_unit           ? "unit " + quoted(out.unit)
-                             : out.unit.empty() ? what + " has no unit"
-                                                : what + " has unit " + quoted(out.unit);
-  std::optional<UnitConversion> conv = find_unit(out.unit);
-  const bool unitless = conv && conv->dimension == Dimension::kDimensionless;
-  if (unitless && need != Dimension::kDimensionless) {
-    conv.reset();  // a unitless signal for a physical input: its conversion must be given
-  }
-  const std::string input(input_name(ctx.input));
-  if (conv) {
-    if (conv->dimension != need) {
-      t.fail(unit_key, source + ", " + with_article(dimension_name(conv->dimension)) + "; " +
-                           input + " needs " + with_article(dimension_name(need)) + " (" +
-                           units_of(need) + ")" +
-                           (has_unit ? "" : "; unit: overrides the DBC's unit"));
-    }
-    out.unit_scale = conv->scale;
-  } else if (!has_gain) {
-    t.fail(unit_key, source + (unitless ? "" : ", which is not in the unit table") +
-                         ": give gain: (" + std::string(si_unit(need)) +
-                         " per DBC unit) or unit: (one of " + units_of(need) + ")");
-  } else {
-    out.unit_scale = 1.0;  // the gain is the whole conversion
-  }
-
+  read_mux(t, msg, sig, m, what, &out);
+  read_units(t, sig, ctx.input, what, &out);
   out.has_range = sig.has_range;
   out.minimum = sig.minimum;
   out.maximum = sig.maximum;

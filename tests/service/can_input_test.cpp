@@ -99,10 +99,10 @@ TEST(CanInputSource, CandumpLogFramesAreDecodedIntoTheSignalTable) {
   TimeUs last = -1;
   TimeUs last_speed_us = -1;
   InputRecord record;
-  while (source.read(0) == InputSource::Read::kRecord) {
+  while (source.next_record(0) == InputSource::Read::kRecord) {
     EXPECT_GT(source.record_time_us(), last);
     last = source.record_time_us();
-    source.fetch(&record);
+    source.copy_record(&record);
     EXPECT_EQ(record.time_us, last);
     source.apply(record);
     if (record.frame.id == 0xB4 && record.frame.len == 8) last_speed_us = record.time_us;
@@ -155,14 +155,15 @@ TEST(CanInputSource, SocketCanReaderThroughItsFdSeam) {
   const char junk[5] = {1, 2, 3, 4, 5};  // a record of a bad size
   ASSERT_EQ(::write(fds[1], junk, sizeof junk), 5);
   InputRecord record;
-  EXPECT_EQ(source.read(1000), InputSource::Read::kRecord);
-  source.fetch(&record);
+  EXPECT_EQ(source.next_record(1000), InputSource::Read::kRecord);
+  source.copy_record(&record);
   record.time_us = 5'000'000;  // the daemon re-stamps live frames into its tick clock
   source.apply(record);
-  EXPECT_EQ(source.read(1000), InputSource::Read::kRecord);
-  source.fetch(&record);
+  EXPECT_EQ(source.next_record(1000), InputSource::Read::kRecord);
+  source.copy_record(&record);
   source.apply(record);
-  EXPECT_EQ(source.read(50), InputSource::Read::kTimeout);  // the junk is counted, not returned
+  EXPECT_EQ(source.next_record(50),
+            InputSource::Read::kTimeout);  // the junk is counted, not returned
   EXPECT_EQ(source.counters().decoded.load(), 1);
   EXPECT_EQ(source.counters().unknown.load(), 1);  // 0x7FF is not in the DBC
   EXPECT_EQ(source.counters().malformed.load(), 1);
@@ -171,7 +172,7 @@ TEST(CanInputSource, SocketCanReaderThroughItsFdSeam) {
   EXPECT_NEAR(s.speed_mps, 0x1234 * 0.0062 * kMphToMps, 1e-9);
   EXPECT_EQ(source.input_age_us(Input::kSpeed, 5'010'000), 10'000);
   ::close(fds[1]);
-  EXPECT_EQ(source.read(1000), InputSource::Read::kEnd);
+  EXPECT_EQ(source.next_record(1000), InputSource::Read::kEnd);
 }
 
 TEST(CanInputSource, VmassdReplaysACandumpLogAndReportsTheCounters) {

@@ -54,9 +54,9 @@ TEST(HotPath, EstimatorSideOfTheCanInputAllocatesNothing) {
   CanInputSource source(std::move(frames), can.inputs->decoder, can.inputs->mapping);
   // The receive thread's side (may allocate: file reading).
   std::vector<InputRecord> records;
-  while (source.read(0) == InputSource::Read::kRecord) {
+  while (source.next_record(0) == InputSource::Read::kRecord) {
     records.emplace_back();
-    source.fetch(&records.back());
+    source.copy_record(&records.back());
   }
   ASSERT_GT(records.size(), 100'000u);
 

@@ -140,171 +140,194 @@ bool write_file(const std::string& path, const std::string& text) {
   return static_cast<bool>(out);
 }
 
-}  // namespace
-
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
-int main(int argc, char** argv) {
-  CLI::App app{
-      "vmass-calibrate: rear suspension stiffness from static ballast steps (paper eq. 1-3)"};
+struct Options {
   std::string ballast_path, config_path, masses_text, write_config_path, plot_path;
   bool json = false;
   std::optional<double> wheelbase_m, cg_to_front_axle_m, gravity_mps2, empty_mass_kg;
   vmass::calibrate::SuspensionFitOptions fit;
   vmass::calibrate::PlateauParams plateau;
-  double min_step_mm = plateau.min_step_m * 1e3;
+};
 
-  app.add_option("--ballast", ballast_path,
+std::optional<int> parse_options(int argc, char** argv, Options* o) {
+  CLI::App app{
+      "vmass-calibrate: rear suspension stiffness from static ballast steps (paper eq. 1-3)"};
+  double min_step_mm = o->plateau.min_step_m * 1e3;
+  app.add_option("--ballast", o->ballast_path,
                  "steps CSV (added_mass_kg, rear_right_deflection_mm), time series CSV "
                  "(time_s, rear_right_deflection_<unit>[, speed_mps]) or CAN log (candump -l, "
                  "Vector ASC/BLF, PEAK TRC, ASAM MDF4; with --config: its can: section)")
       ->required();
-  app.add_option("--config", config_path, "vmass YAML config: vehicle geometry and empty mass");
-  app.add_option("--masses", masses_text,
+  app.add_option("--config", o->config_path, "vmass YAML config: vehicle geometry and empty mass");
+  app.add_option("--masses", o->masses_text,
                  "ballast added at each plateau of a time series, kg, in time order: "
                  "'0,100,200' or FIRST:STEP:LAST");
-  app.add_option("--write-config", write_config_path, "write the suspension: YAML snippet here");
-  app.add_option("--plot", plot_path, "write a PNG: steps, both fits, linear range, residuals");
-  app.add_flag("--json", json, "print the results as one JSON object on stdout");
-  app.add_option("--wheelbase-m", wheelbase_m, "l (overrides the config)");
-  app.add_option("--cg-to-front-axle-m", cg_to_front_axle_m, "l_f (overrides the config)");
-  app.add_option("--gravity-mps2", gravity_mps2, "g (overrides the config; default 9.80665)");
-  app.add_option("--empty-mass-kg", empty_mass_kg,
+  app.add_option("--write-config", o->write_config_path, "write the suspension: YAML snippet here");
+  app.add_option("--plot", o->plot_path, "write a PNG: steps, both fits, linear range, residuals");
+  app.add_flag("--json", o->json, "print the results as one JSON object on stdout");
+  app.add_option("--wheelbase-m", o->wheelbase_m, "l (overrides the config)");
+  app.add_option("--cg-to-front-axle-m", o->cg_to_front_axle_m, "l_f (overrides the config)");
+  app.add_option("--gravity-mps2", o->gravity_mps2, "g (overrides the config; default 9.80665)");
+  app.add_option("--empty-mass-kg", o->empty_mass_kg,
                  "M_idle, for the per-step total-mass table (overrides the config)");
-  app.add_option("--linear-tolerance", fit.linear_tolerance,
+  app.add_option("--linear-tolerance", o->fit.linear_tolerance,
                  "linear range: relative load error allowed (default 0.01)");
-  app.add_option("--robust-scale-mm", fit.robust_scale_mm,
+  app.add_option("--robust-scale-mm", o->fit.robust_scale_mm,
                  "Cauchy loss scale, mm (default 0: estimated from the residuals)");
-  app.add_option("--settle-s", plateau.settle_s, "plateaus: settling time always dropped");
-  app.add_option("--min-plateau-s", plateau.min_plateau_s, "plateaus: shortest plateau kept");
+  app.add_option("--settle-s", o->plateau.settle_s, "plateaus: settling time always dropped");
+  app.add_option("--min-plateau-s", o->plateau.min_plateau_s, "plateaus: shortest plateau kept");
   app.add_option("--min-step-mm", min_step_mm, "plateaus: closer levels are the same load");
-  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
-  plateau.min_step_m = min_step_mm * 1e-3;
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return code;
+  o->plateau.min_step_m = min_step_mm * 1e-3;
+  return std::nullopt;
+}
 
-  // ---- Vehicle geometry (and empty mass) from the config and the flags.
+/// The vehicle's geometry (and empty mass) from the config and the flags.
+struct VehicleSetup {
   vmass::VehicleParams vehicle;
   bool have_empty_mass = false;
   std::optional<vmass::Config> config;
-  if (!config_path.empty()) {
-    vmass::ConfigLoad loaded = vmass::load_config(config_path);
-    if (!loaded.ok()) return fail(loaded.error);
-    vehicle = loaded.config->pipeline.vehicle;
-    have_empty_mass = true;
-    config = std::move(loaded.config);
-  }
-  if (wheelbase_m) vehicle.wheelbase_m = *wheelbase_m;
-  if (cg_to_front_axle_m) vehicle.cg_to_front_axle_m = *cg_to_front_axle_m;
-  if (gravity_mps2) vehicle.gravity_mps2 = *gravity_mps2;
-  if (empty_mass_kg) {
-    vehicle.empty_mass_kg = *empty_mass_kg;
-    have_empty_mass = true;
-  }
-  const auto geometry = vmass::calibrate::LoadGeometry::from_vehicle(vehicle);
-  if (std::string m = geometry.validate(); !m.empty()) {
-    return fail(m + (config_path.empty()
-                         ? " (give --config FILE, or --wheelbase-m and --cg-to-front-axle-m)"
-                         : ""));
-  }
-  if (have_empty_mass && !(vehicle.empty_mass_kg > 0.0)) {
-    return fail("vehicle.empty_mass_kg must be > 0");
-  }
+};
 
-  // ---- Ballast steps: a steps CSV, or plateaus of a time series (CSV or candump log).
-  vmass::calibrate::BallastCsvRead read;
+/// "" or why the geometry cannot be used.
+std::string load_vehicle(const Options& o, VehicleSetup* out) {
+  if (!o.config_path.empty()) {
+    vmass::ConfigLoad loaded = vmass::load_config(o.config_path);
+    if (!loaded.ok()) return loaded.error;
+    out->vehicle = loaded.config->pipeline.vehicle;
+    out->have_empty_mass = true;
+    out->config = std::move(loaded.config);
+  }
+  vmass::VehicleParams& v = out->vehicle;
+  if (o.wheelbase_m) v.wheelbase_m = *o.wheelbase_m;
+  if (o.cg_to_front_axle_m) v.cg_to_front_axle_m = *o.cg_to_front_axle_m;
+  if (o.gravity_mps2) v.gravity_mps2 = *o.gravity_mps2;
+  if (o.empty_mass_kg) {
+    v.empty_mass_kg = *o.empty_mass_kg;
+    out->have_empty_mass = true;
+  }
+  if (std::string m = vmass::calibrate::LoadGeometry::from_vehicle(v).validate(); !m.empty()) {
+    return m + (o.config_path.empty()
+                    ? " (give --config FILE, or --wheelbase-m and --cg-to-front-axle-m)"
+                    : "");
+  }
+  if (out->have_empty_mass && !(v.empty_mass_kg > 0.0)) return "vehicle.empty_mass_kg must be > 0";
+  return "";
+}
+
+/// The ballast file as a steps CSV or a time series (a CSV or a CAN log). "" or an error.
+std::string read_ballast(const Options& o, const VehicleSetup& setup,
+                         vmass::calibrate::BallastCsvRead* read, std::string* log_note) {
+  if (!is_can_log(o.ballast_path)) {
+    *read = vmass::calibrate::read_ballast_csv(o.ballast_path);
+    return read->ok() ? "" : read->error;
+  }
+  if (!setup.config) {
+    return o.ballast_path +
+           " is a CAN log: give --config FILE with the can: section that maps "
+           "rear_right_deflection (and speed) from the DBC";
+  }
+  read->csv = vmass::calibrate::BallastCsv{};
+  read->csv->kind = vmass::calibrate::BallastCsvKind::kSeries;
+  return read_log_series(o.ballast_path, *setup.config, &read->csv->series, log_note);
+}
+
+/// The ballast steps: a steps CSV's groups, or a time series' plateaus paired with --masses.
+std::string ballast_steps(const Options& o, const VehicleSetup& setup,
+                          std::vector<vmass::calibrate::BallastStep>* steps,
+                          std::vector<std::string>* notes) {
+  namespace cal = vmass::calibrate;
+  cal::BallastCsvRead read;
   std::string log_note;
-  if (is_can_log(ballast_path)) {
-    if (!config) {
-      return fail(ballast_path +
-                  " is a CAN log: give --config FILE with the can: section that maps "
-                  "rear_right_deflection (and speed) from the DBC");
+  if (std::string m = read_ballast(o, setup, &read, &log_note); !m.empty()) return m;
+  if (read.csv->kind == cal::BallastCsvKind::kSteps) {
+    if (!o.masses_text.empty()) {
+      return "--masses is for a time series; " + o.ballast_path +
+             " already has an added_mass column";
     }
-    read.csv = vmass::calibrate::BallastCsv{};
-    read.csv->kind = vmass::calibrate::BallastCsvKind::kSeries;
-    if (std::string m = read_log_series(ballast_path, *config, &read.csv->series, &log_note);
-        !m.empty()) {
-      return fail(m);
-    }
-  } else {
-    read = vmass::calibrate::read_ballast_csv(ballast_path);
-    if (!read.ok()) return fail(read.error);
+    *steps = cal::group_samples(read.csv->samples);
+    return "";
   }
-  std::vector<vmass::calibrate::BallastStep> steps;
+  if (o.masses_text.empty()) {
+    return o.ballast_path + " is a time series: give the ballast of each plateau with --masses";
+  }
+  std::vector<double> masses;
+  if (std::string m = cal::parse_mass_list(o.masses_text, &masses); !m.empty()) return m;
+  const cal::PlateauDetection detection = cal::detect_plateaus(read.csv->series, o.plateau);
+  if (!detection.ok()) return o.ballast_path + ": " + detection.error;
+  *notes = detection.notes;
+  if (std::string m = cal::steps_from_plateaus(detection.plateaus, masses, steps); !m.empty()) {
+    return o.ballast_path + ": " + m;
+  }
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%zu plateaus found (noise %.4f mm); %ld rows skipped",
+                detection.plateaus.size(), detection.noise_std_m * 1e3, read.csv->skipped_rows);
+  notes->insert(notes->begin(), buf);
+  if (!log_note.empty()) notes->insert(notes->begin(), log_note);
+  return "";
+}
+
+/// Runs the plotting script on the result's JSON. "" or why it failed.
+std::string plot(const Options& o, const std::string& json_text) {
+  const std::string json_path =
+      (fs::temp_directory_path() / ("vmass-calibrate-" + std::to_string(::getpid()) + ".json"))
+          .string();
+  if (!write_file(json_path, json_text)) return json_path + ": cannot write";
+  const std::string command =
+      shell_quote(sibling_program("vmass-calibrate-plot")) + " --result " + shell_quote(json_path) +
+      " --out " + shell_quote(o.plot_path) + " --title " +
+      shell_quote("vmass-calibrate: " + fs::path(o.ballast_path).filename().string());
+  const int rc = std::system(command.c_str());
+  fs::remove(json_path);
+  return rc == 0 ? "" : "plotting failed (" + command + ")";
+}
+
+void print_report(const Options& o, const std::vector<std::string>& notes, const std::string& text,
+                  const std::string& snippet) {
+  for (const std::string& n : notes) std::cout << "note: " << n << "\n";
+  std::cout << text << "\n";
+  if (o.write_config_path.empty()) {
+    std::cout << snippet;
+  } else {
+    std::cout << "config snippet     " << o.write_config_path << "\n";
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace cal = vmass::calibrate;
+  Options o;
+  if (const auto code = parse_options(argc, argv, &o)) return *code;
+  VehicleSetup setup;
+  if (std::string m = load_vehicle(o, &setup); !m.empty()) return fail(m);
+  std::vector<cal::BallastStep> steps;
   std::vector<std::string> notes;
-  if (read.csv->kind == vmass::calibrate::BallastCsvKind::kSteps) {
-    if (!masses_text.empty()) {
-      return fail("--masses is for a time series; " + ballast_path +
-                  " already has an added_mass column");
-    }
-    steps = vmass::calibrate::group_samples(read.csv->samples);
-  } else {
-    if (masses_text.empty()) {
-      return fail(ballast_path +
-                  " is a time series: give the ballast of each plateau with --masses");
-    }
-    std::vector<double> masses;
-    if (std::string m = vmass::calibrate::parse_mass_list(masses_text, &masses); !m.empty()) {
-      return fail(m);
-    }
-    const vmass::calibrate::PlateauDetection detection =
-        vmass::calibrate::detect_plateaus(read.csv->series, plateau);
-    if (!detection.ok()) return fail(ballast_path + ": " + detection.error);
-    notes = detection.notes;
-    if (std::string m = vmass::calibrate::steps_from_plateaus(detection.plateaus, masses, &steps);
-        !m.empty()) {
-      return fail(ballast_path + ": " + m);
-    }
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "%zu plateaus found (noise %.4f mm); %ld rows skipped",
-                  detection.plateaus.size(), detection.noise_std_m * 1e3, read.csv->skipped_rows);
-    notes.insert(notes.begin(), buf);
-    if (!log_note.empty()) notes.insert(notes.begin(), log_note);
-  }
-  if (std::string m = vmass::calibrate::check_steps(steps); !m.empty()) {
-    return fail(ballast_path + ": " + m);
-  }
+  if (std::string m = ballast_steps(o, setup, &steps, &notes); !m.empty()) return fail(m);
+  if (std::string m = cal::check_steps(steps); !m.empty()) return fail(o.ballast_path + ": " + m);
 
-  // ---- Fit.
-  const vmass::calibrate::SuspensionFitResult result =
-      vmass::calibrate::fit_suspension(steps, geometry, fit);
+  const cal::SuspensionFitResult result =
+      cal::fit_suspension(steps, cal::LoadGeometry::from_vehicle(setup.vehicle), o.fit);
   if (!result.ok()) return fail(result.error, kExitFailure);
-  const vmass::calibrate::SuspensionCalibration& cal = *result.calibration;
-  const std::vector<vmass::calibrate::MassCheckRow> rows =
-      have_empty_mass ? vmass::calibrate::mass_check(cal, vehicle)
-                      : std::vector<vmass::calibrate::MassCheckRow>{};
-
-  const std::string snippet = vmass::calibrate::suspension_yaml(
-      cal, {"rear-right suspension, written by vmass-calibrate from " +
-                fs::path(ballast_path).filename().string(),
-            "(replace the suspension: section of the vmassd config with this one)"});
-  if (!write_config_path.empty() && !write_file(write_config_path, snippet)) {
-    return fail(write_config_path + ": cannot write");
+  const cal::SuspensionCalibration& c = *result.calibration;
+  const std::vector<cal::MassCheckRow> rows =
+      setup.have_empty_mass ? cal::mass_check(c, setup.vehicle) : std::vector<cal::MassCheckRow>{};
+  const std::string snippet = cal::suspension_yaml(
+      c, {"rear-right suspension, written by vmass-calibrate from " +
+              fs::path(o.ballast_path).filename().string(),
+          "(replace the suspension: section of the vmassd config with this one)"});
+  if (!o.write_config_path.empty() && !write_file(o.write_config_path, snippet)) {
+    return fail(o.write_config_path + ": cannot write");
   }
-
-  const std::string json_text = vmass::calibrate::calibration_json(cal, rows);
-  if (json) {
+  const std::string json_text = cal::calibration_json(c, rows);
+  if (o.json) {
     std::cout << json_text << "\n";
   } else {
-    for (const std::string& n : notes) std::cout << "note: " << n << "\n";
-    std::cout << vmass::calibrate::calibration_text(cal, rows) << "\n";
-    if (write_config_path.empty()) {
-      std::cout << snippet;
-    } else {
-      std::cout << "config snippet     " << write_config_path << "\n";
-    }
+    print_report(o, notes, cal::calibration_text(c, rows), snippet);
   }
-
-  if (!plot_path.empty()) {
-    const std::string json_path =
-        (fs::temp_directory_path() / ("vmass-calibrate-" + std::to_string(::getpid()) + ".json"))
-            .string();
-    if (!write_file(json_path, json_text)) return fail(json_path + ": cannot write");
-    const std::string command =
-        shell_quote(sibling_program("vmass-calibrate-plot")) + " --result " +
-        shell_quote(json_path) + " --out " + shell_quote(plot_path) + " --title " +
-        shell_quote("vmass-calibrate: " + fs::path(ballast_path).filename().string());
-    const int rc = std::system(command.c_str());
-    fs::remove(json_path);
-    if (rc != 0) return fail("plotting failed (" + command + ")", kExitFailure);
-    if (!json) std::cout << "plot               " << plot_path << "\n";
+  if (o.plot_path.empty()) return 0;
+  if (std::string m = plot(o, json_text); !m.empty()) {
+    return fail(m, m.find("plotting failed") == 0 ? kExitFailure : kExitUsage);
   }
+  if (!o.json) std::cout << "plot               " << o.plot_path << "\n";
   return 0;
 }

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -140,31 +141,18 @@ int run_check(const std::string& dbc, bool strict) {
   return r.ok() && compiles ? vmass::tools::kExitOk : vmass::tools::kExitUsage;
 }
 
-/// The log to decode: a file of any format vmass reads, or standard input (text formats).
-std::unique_ptr<rt::LogFrameSource> open_decode_input(const std::string& log) {
-  std::string error;
-  std::unique_ptr<rt::LogFrameSource> source;
-  if (log.empty() || log == "-") {
-    source = rt::TextLogFrameSource::from_stream(std::make_unique<std::istream>(std::cin.rdbuf()),
-                                                 "stdin", false, &error);
-  } else {
-    source = rt::open_log_frame_source(log, &error, false);
-  }
-  if (!source) std::cerr << "vmass-can decode: " << error << "\n";
-  return source;
-}
-
-/// One decoded frame as a JSON object (one line).
-void append_json(std::string& out, const Decoder& decoder, const Message& msg, const CanFrame& f) {
+/// One decoded frame as a JSON object (a line).
+void append_json(std::string& out, const Decoder& decoder, const Message& msg,
+                 const CandumpRecord& rec) {
   out += "{\"time_s\": ";
-  append_time(out, f.time_us);
+  append_time(out, rec.frame.time_us);
   out += ", \"id\": ";
-  out += std::to_string(f.id);
+  out += std::to_string(rec.frame.id);
   out += ", \"message\": \"";
   out += json_escape(msg.name);
   out += "\", \"signals\": {";
   bool first = true;
-  decoder.decode(f, [&](int i, double v) {
+  decoder.decode(rec.frame, [&](int i, double v) {
     if (!first) out += ", ";
     first = false;
     out += '"';
@@ -175,14 +163,15 @@ void append_json(std::string& out, const Decoder& decoder, const Message& msg, c
   out += "}}\n";
 }
 
-/// One decoded frame as cantools decode prints it: the candump line, then the signals.
-void append_text(std::string& out, const Decoder& decoder, const Message& msg, const CanFrame& f,
-                 std::string_view interface) {
-  std::string line = format_candump_line(f, interface);
+/// One decoded frame as cantools decode prints it: the candump line, then the signals (value
+/// descriptions for integer signals that have one, else the value and the unit).
+void append_text(std::string& out, const Decoder& decoder, const Message& msg,
+                 const CandumpRecord& rec) {
+  std::string line = format_candump_line(rec.frame, rec.interface);
   line.pop_back();
   out += line + " :: " + msg.name + "(";
   bool first = true;
-  decoder.decode(f, [&](int i, double v) {
+  decoder.decode(rec.frame, [&](int i, double v) {
     const Signal& s = msg.signals[static_cast<std::size_t>(i)];
     if (!first) out += ", ";
     first = false;
@@ -202,40 +191,64 @@ void append_text(std::string& out, const Decoder& decoder, const Message& msg, c
   out += ")\n";
 }
 
+/// The log to decode: a file of any format vmass reads, or standard input (text formats).
+std::unique_ptr<rt::LogFrameSource> open_decode_input(const std::string& log) {
+  std::string error;
+  std::unique_ptr<rt::LogFrameSource> source;
+  if (log.empty() || log == "-") {
+    source = rt::TextLogFrameSource::from_stream(std::make_unique<std::istream>(std::cin.rdbuf()),
+                                                 "stdin", false, &error);
+  } else {
+    source = rt::open_log_frame_source(log, &error, false);
+  }
+  if (!source) std::cerr << "vmass-can decode: " << error << "\n";
+  return source;
+}
+
+/// Decodes every frame of the log to stdout; undecodable frames are echoed (text) or left out
+/// (JSON), too-short ones reported with their line (record).
+DecodeStats decode_frames(rt::LogFrameSource& source, const Decoder& decoder, bool json) {
+  const Database& db = decoder.database();
+  DecodeStats stats;
+  CandumpRecord rec;
+  std::string out;
+  out.reserve(4096);
+  while (source.read(&rec.frame, 0) == rt::FrameSource::Read::kFrame) {
+    rec.interface = source.interface_name();
+    int m = -1;
+    out.clear();
+    const DecodeStatus st = decoder.classify(rec.frame, &m);
+    stats.count(st);
+    if (st != DecodeStatus::kOk) {
+      if (st == DecodeStatus::kTooShort) {
+        std::cerr << source.path() << ":" << (source.unit() == "record" ? "record " : "")
+                  << source.position() << ": frame "
+                  << db.messages[static_cast<std::size_t>(m)].name << " has " << int(rec.frame.len)
+                  << " bytes, the DBC says " << db.messages[static_cast<std::size_t>(m)].length
+                  << ": rejected\n";
+      }
+      if (!json) std::cout << format_candump_line(rec.frame, rec.interface);
+      continue;
+    }
+    const Message& msg = db.messages[static_cast<std::size_t>(m)];
+    if (json) {
+      append_json(out, decoder, msg, rec);
+    } else {
+      append_text(out, decoder, msg, rec);
+    }
+    std::cout << out;
+  }
+  std::cout.flush();
+  return stats;
+}
+
 int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
   auto decoder = load_decoder(dbc, strict, json);
   if (!decoder) return vmass::tools::kExitUsage;
   std::unique_ptr<rt::LogFrameSource> source = open_decode_input(log);
   if (!source) return vmass::tools::kExitUsage;
   source->on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
-  const Database& db = decoder->database();
-  DecodeStats stats;
-  CanFrame frame;
-  std::string out;
-  out.reserve(4096);
-  while (source->read(&frame, 0) == rt::FrameSource::Read::kFrame) {
-    int m = -1;
-    out.clear();
-    const DecodeStatus st = decoder->classify(frame, &m);
-    stats.count(st);
-    const Message* msg = m >= 0 ? &db.messages[static_cast<std::size_t>(m)] : nullptr;
-    if (st == DecodeStatus::kTooShort) {
-      std::cerr << source->path() << ":" << (source->unit() == "record" ? "record " : "")
-                << source->position() << ": frame " << msg->name << " has " << int(frame.len)
-                << " bytes, the DBC says " << msg->length << ": rejected\n";
-    }
-    if (st != DecodeStatus::kOk) {
-      if (!json) std::cout << format_candump_line(frame, source->interface_name());
-      continue;
-    }
-    if (json) {
-      append_json(out, *decoder, *msg, frame);
-    } else {
-      append_text(out, *decoder, *msg, frame, source->interface_name());
-    }
-    std::cout << out;
-  }
-  std::cout.flush();
+  const DecodeStats stats = decode_frames(*source, *decoder, json);
   const CandumpStats& cs = source->stats();
   std::cerr << "vmass-can decode: " << log_format_name(source->format()) << ", " << cs.frames
             << " frames, " << stats.decoded << " decoded, " << stats.unknown_id << " unknown id, "

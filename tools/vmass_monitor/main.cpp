@@ -116,122 +116,153 @@ class Monitor {
   ChannelStats estimates_, statuses_;
 };
 
-}  // namespace
-
-// NOLINTNEXTLINE(readability-function-size): not split yet (issue 9)
-int main(int argc, char** argv) {
-  CLI::App app{"vmass-monitor: live view of vmassd's LCM output in a terminal"};
+struct Options {
   std::string config_path, url, estimate_channel, status_channel;
   bool once = false, plain = false;
   long count = 0;
   double rates_s = 0.0, timeout_s = -1.0, interval_s = 0.0;
-  app.add_option("--config", config_path, "vmass config (for its lcm: URL and channel names)");
-  app.add_option("--lcm-url", url, "LCM URL (default: the config's, else LCM's default)");
-  app.add_option("--estimate-channel", estimate_channel, "default VMASS_ESTIMATE");
-  app.add_option("--status-channel", status_channel, "default VMASS_STATUS");
-  auto* once_opt = app.add_flag("--once", once, "print one report and exit");
+};
+
+std::optional<int> parse_options(int argc, char** argv, Options* o) {
+  CLI::App app{"vmass-monitor: live view of vmassd's LCM output in a terminal"};
+  app.add_option("--config", o->config_path, "vmass config (for its lcm: URL and channel names)");
+  app.add_option("--lcm-url", o->url, "LCM URL (default: the config's, else LCM's default)");
+  app.add_option("--estimate-channel", o->estimate_channel, "default VMASS_ESTIMATE");
+  app.add_option("--status-channel", o->status_channel, "default VMASS_STATUS");
+  auto* once_opt = app.add_flag("--once", o->once, "print one report and exit");
   auto* count_opt =
-      app.add_option("--count", count, "exit after N estimates")->check(CLI::PositiveNumber);
+      app.add_option("--count", o->count, "exit after N estimates")->check(CLI::PositiveNumber);
   auto* rates_opt =
-      app.add_option("--rates", rates_s, "listen this many seconds, print message rates, exit")
+      app.add_option("--rates", o->rates_s, "listen this many seconds, print message rates, exit")
           ->check(CLI::PositiveNumber);
-  app.add_option("--timeout", timeout_s, "exit 1 when nothing arrives within this many seconds");
-  app.add_flag("--plain", plain, "no ANSI redraw (default when stdout is not a terminal)");
-  app.add_option("--interval", interval_s,
+  app.add_option("--timeout", o->timeout_s, "exit 1 when nothing arrives within this many seconds");
+  app.add_flag("--plain", o->plain, "no ANSI redraw (default when stdout is not a terminal)");
+  app.add_option("--interval", o->interval_s,
                  "seconds between reports (live view 0.2, plain 1; with --count --plain: only "
                  "when given)")
       ->check(CLI::PositiveNumber);
   once_opt->excludes(count_opt)->excludes(rates_opt);
   count_opt->excludes(rates_opt);
-  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
+  return vmass::tools::parse_command_line(app, argc, argv);
+}
 
-  vmass::service::LcmSettings lcm_settings;
-  if (!config_path.empty()) {
-    vmass::ConfigLoad loaded = vmass::load_config(config_path);
+/// The LCM URL and channels: the config's lcm: section, then the flags. False on a config error.
+bool lcm_settings_for(const Options& o, vmass::service::LcmSettings* out) {
+  if (!o.config_path.empty()) {
+    vmass::ConfigLoad loaded = vmass::load_config(o.config_path);
     if (!loaded.ok()) {
       std::fprintf(stderr, "vmass-monitor: %s\n", loaded.error.c_str());
-      return 2;
+      return false;
     }
     const auto settings = vmass::service::load_service_settings(*loaded.config);
     if (!settings.ok()) {
       std::fprintf(stderr, "vmass-monitor: %s\n", settings.error.c_str());
-      return 2;
+      return false;
     }
-    lcm_settings = settings.settings.lcm;
+    *out = settings.settings.lcm;
   }
-  if (!url.empty()) lcm_settings.url = url;
-  if (!estimate_channel.empty()) lcm_settings.estimate_channel = estimate_channel;
-  if (!status_channel.empty()) lcm_settings.status_channel = status_channel;
-  const bool batch = once || count > 0 || rates_s > 0.0;
-  if (timeout_s < 0.0 && (once || count > 0)) timeout_s = 10.0;
-  // The live view: by default, and with --count, when stdout is a terminal.
-  const bool ansi = !plain && !once && rates_s <= 0.0 && ::isatty(STDOUT_FILENO);
-  // Periodic reports: the live view, the default mode, or --count with --interval.
-  const bool periodic = ansi || !batch || (count > 0 && interval_s > 0.0);
-  if (interval_s <= 0.0) interval_s = ansi ? 0.2 : 1.0;
-  const auto interval =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval_s));
+  if (!o.url.empty()) out->url = o.url;
+  if (!o.estimate_channel.empty()) out->estimate_channel = o.estimate_channel;
+  if (!o.status_channel.empty()) out->status_channel = o.status_channel;
+  return true;
+}
 
-  lcm::LCM lcm(lcm_settings.url);
-  if (!lcm.good()) {
-    std::fprintf(stderr, "vmass-monitor: cannot open LCM at '%s'\n", lcm_settings.url.c_str());
-    return 1;
-  }
-  Monitor monitor;
-  lcm.subscribe(lcm_settings.estimate_channel, &Monitor::on_estimate, &monitor);
-  lcm.subscribe(lcm_settings.status_channel, &Monitor::on_status, &monitor);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+/// How the reports come out.
+struct Mode {
+  bool batch = false;     ///< --once, --count or --rates: the run ends by itself
+  bool ansi = false;      ///< the live view: by default, and with --count, on a terminal
+  bool periodic = false;  ///< reports every interval: the live view, the default, --count with
+                          ///< --interval
+  Clock::duration interval{};
+};
 
+Mode mode_for(Options* o) {
+  Mode m;
+  m.batch = o->once || o->count > 0 || o->rates_s > 0.0;
+  if (o->timeout_s < 0.0 && (o->once || o->count > 0)) o->timeout_s = 10.0;
+  m.ansi = !o->plain && !o->once && o->rates_s <= 0.0 && ::isatty(STDOUT_FILENO);
+  m.periodic = m.ansi || !m.batch || (o->count > 0 && o->interval_s > 0.0);
+  if (o->interval_s <= 0.0) o->interval_s = m.ansi ? 0.2 : 1.0;
+  m.interval =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o->interval_s));
+  return m;
+}
+
+/// Handles LCM messages and prints reports until the run ends. An exit code when it ended on
+/// a timeout (1), nullopt when it ended as asked.
+std::optional<int> watch(lcm::LCM& lcm, const Monitor& monitor, const Options& o, const Mode& m,
+                         const vmass::service::LcmSettings& settings) {
   const Clock::time_point start = Clock::now();
   Clock::time_point next_draw = start;
-  if (ansi) std::fputs("\x1b[2J", stdout);
+  if (m.ansi) std::fputs("\x1b[2J", stdout);
   while (!g_stop) {
     lcm.handleTimeout(50);
     const Clock::time_point now = Clock::now();
     const double elapsed = std::chrono::duration<double>(now - start).count();
-    if (rates_s > 0.0 && elapsed >= rates_s) break;
-    if (once && monitor.complete()) break;
-    if (count > 0 && monitor.estimates().count >= count) break;
-    if (timeout_s > 0.0 && elapsed >= timeout_s && monitor.estimates().count == 0 &&
-        monitor.statuses().count == 0) {
-      std::fprintf(stderr, "vmass-monitor: nothing received on %s / %s within %.1f s\n",
-                   lcm_settings.estimate_channel.c_str(), lcm_settings.status_channel.c_str(),
-                   timeout_s);
-      return 1;
-    }
-    if (timeout_s > 0.0 && elapsed >= timeout_s && (once || count > 0)) {
-      std::fprintf(stderr, "vmass-monitor: timed out after %.1f s\n", timeout_s);
-      std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);
-      return 1;
-    }
+    if (o.rates_s > 0.0 && elapsed >= o.rates_s) break;
+    if (o.once && monitor.complete()) break;
+    if (o.count > 0 && monitor.estimates().count >= o.count) break;
     const bool anything = monitor.estimates().count > 0 || monitor.statuses().count > 0;
-    if (periodic && now >= next_draw && (ansi || anything)) {
-      const std::string text = monitor.report(lcm_settings.url);
-      if (ansi) {
+    if (o.timeout_s > 0.0 && elapsed >= o.timeout_s && !anything) {
+      std::fprintf(stderr, "vmass-monitor: nothing received on %s / %s within %.1f s\n",
+                   settings.estimate_channel.c_str(), settings.status_channel.c_str(), o.timeout_s);
+      return 1;
+    }
+    if (o.timeout_s > 0.0 && elapsed >= o.timeout_s && (o.once || o.count > 0)) {
+      std::fprintf(stderr, "vmass-monitor: timed out after %.1f s\n", o.timeout_s);
+      std::fputs(monitor.report(settings.url).c_str(), stdout);
+      return 1;
+    }
+    if (m.periodic && now >= next_draw && (m.ansi || anything)) {
+      const std::string text = monitor.report(settings.url);
+      if (m.ansi) {
         redraw(text);
       } else {
         std::fputs((text + "\n").c_str(), stdout);
       }
       std::fflush(stdout);
-      next_draw = now + interval;
+      next_draw = now + m.interval;
     }
   }
-  if (rates_s > 0.0) {
-    const ChannelStats& e = monitor.estimates();
-    const ChannelStats& s = monitor.statuses();
-    std::printf("%s messages=%ld rate_hz=%.3f nonfinite_fields=%ld\n",
-                lcm_settings.estimate_channel.c_str(), e.count, e.rate_hz(), e.nonfinite_fields);
-    std::printf("%s messages=%ld rate_hz=%.3f nonfinite_fields=%ld\n",
-                lcm_settings.status_channel.c_str(), s.count, s.rate_hz(), s.nonfinite_fields);
-    const bool ok =
-        e.count > 0 && s.count > 0 && e.nonfinite_fields == 0 && s.nonfinite_fields == 0;
-    return ok ? 0 : 1;
+  return std::nullopt;
+}
+
+/// --rates: messages and rates per channel; 0 when both arrived, finite.
+int print_rates(const Monitor& monitor, const vmass::service::LcmSettings& settings) {
+  const ChannelStats& e = monitor.estimates();
+  const ChannelStats& s = monitor.statuses();
+  std::printf("%s messages=%ld rate_hz=%.3f nonfinite_fields=%ld\n",
+              settings.estimate_channel.c_str(), e.count, e.rate_hz(), e.nonfinite_fields);
+  std::printf("%s messages=%ld rate_hz=%.3f nonfinite_fields=%ld\n",
+              settings.status_channel.c_str(), s.count, s.rate_hz(), s.nonfinite_fields);
+  const bool ok = e.count > 0 && s.count > 0 && e.nonfinite_fields == 0 && s.nonfinite_fields == 0;
+  return ok ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (const auto code = parse_options(argc, argv, &o)) return *code;
+  vmass::service::LcmSettings settings;
+  if (!lcm_settings_for(o, &settings)) return vmass::tools::kExitUsage;
+  const Mode mode = mode_for(&o);
+  lcm::LCM lcm(settings.url);
+  if (!lcm.good()) {
+    std::fprintf(stderr, "vmass-monitor: cannot open LCM at '%s'\n", settings.url.c_str());
+    return vmass::tools::kExitFailure;
   }
-  if (ansi) {
-    redraw(monitor.report(lcm_settings.url));  // the final view stays, the cursor below it
-  } else if (batch) {
-    std::fputs(monitor.report(lcm_settings.url).c_str(), stdout);
+  Monitor monitor;
+  lcm.subscribe(settings.estimate_channel, &Monitor::on_estimate, &monitor);
+  lcm.subscribe(settings.status_channel, &Monitor::on_status, &monitor);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  if (const auto code = watch(lcm, monitor, o, mode, settings)) return *code;
+  if (o.rates_s > 0.0) return print_rates(monitor, settings);
+  if (mode.ansi) {
+    redraw(monitor.report(settings.url));  // the final view stays, the cursor below it
+  } else if (mode.batch) {
+    std::fputs(monitor.report(settings.url).c_str(), stdout);
   }
   return 0;
 }

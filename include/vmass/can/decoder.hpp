@@ -176,6 +176,10 @@ class Decoder {
   };
 
   Decoder() = default;
+  // compile()'s steps; each returns "" or why the database cannot be compiled.
+  std::string compile_message(std::size_t message_index);
+  std::string compile_signal_of(const Message& m, const Signal& sg, int* switches, bool* word_path);
+  std::string index_extended_ids();
   int find_extended(std::uint32_t id) const;
   bool in_ranges(const CompiledSignal& s, std::uint64_t switch_raw) const;
 

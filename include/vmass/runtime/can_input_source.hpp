@@ -34,9 +34,9 @@ class CanInputSource final : public InputSource {
   CanInputSource(std::unique_ptr<FrameSource> frames, std::shared_ptr<const can::Decoder> decoder,
                  const signals::SignalMapping& mapping);
 
-  Read read(int timeout_ms) override;
+  Read next_record(int timeout_ms) override;
   TimeUs record_time_us() const override { return frame_.time_us; }
-  void fetch(InputRecord* record) const override;
+  void copy_record(InputRecord* record) const override;
 
   void apply(const InputRecord& record) override;
   Sample sample_at(TimeUs tick_us) override { return table_.sample_at(tick_us); }

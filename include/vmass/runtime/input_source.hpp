@@ -1,16 +1,17 @@
-// InputSource: where the daemon's estimator inputs come from, split between the two threads
-// that touch it:
+// InputSource: where the estimator's inputs come from (a candump log or SocketCAN frames
+// through a SignalTable, a samples CSV), in two halves that the daemon gives to two threads:
 //
-//   reading thread    read() fetches the next record and says when it describes (input clock:
-//                     log time for recordings, the tick clock for a live bus); fetch() copies it
-//                     into an InputRecord, which goes to the estimator thread through an SPSC
-//                     queue (the split lets the daemon pace a recording by its log time)
-//   estimator thread  apply() folds records into the source's input table; at each tick
+//   reading half      next_record() reads the next record and says when it describes (input
+//                     clock: log time for recordings, the tick clock for a live bus);
+//                     copy_record() copies it into an InputRecord, which the daemon hands to its
+//                     estimator thread through an SPSC queue (so it can pace a recording)
+//   table half        apply() folds records into the source's input table; at each tick
 //                     sample_at(T) turns the table into the tick's Sample and input_age_us()
 //                     says how old each input is
 //
-// So the input table (a SignalTable for CAN, an InputValues for a samples CSV) lives on the
-// estimator thread only; nothing in it is shared. With `--speed max` one thread does both.
+// So in the daemon the input table (a SignalTable for CAN, an InputValues for a samples CSV)
+// lives on the estimator thread only; nothing in it is shared. Offline (TickDriver) and at
+// `--speed max` one thread uses both halves.
 //
 // Validity rule of the samples-CSV table (sample_at(InputValues...) below):
 //
@@ -26,7 +27,7 @@
 // decoded by a signals::SignalTable, see can_input_source.hpp).
 //
 // Counters are atomics (each written by one thread, or added to by both) read by the status
-// publisher. Thread-safety: read()/record_time_us()/fetch() from one reading thread;
+// publisher. Thread-safety: next_record()/record_time_us()/copy_record() from one reading thread;
 // apply()/sample_at()/input_age_us()/input_report() from one estimator thread; counters(),
 // health(), recorded() and describe() from any thread.
 #pragma once
@@ -98,21 +99,22 @@ struct SourceHealth {
 class InputSource {
  public:
   enum class Read : std::uint8_t {
-    kRecord,   ///< a record is ready: record_time_us(), then fetch()
+    kRecord,   ///< a record is ready: record_time_us(), then copy_record()
     kTimeout,  ///< nothing within the timeout (live sources)
-    kDown,     ///< the input is lost for now (interface down/gone); call read() again
+    kDown,     ///< the input is lost for now (interface down/gone); call next_record() again
     kEnd,      ///< end of a recording
   };
 
   virtual ~InputSource() = default;
 
   // ---------------------------------------------------------------- reading thread
-  /// Fetches the next record, waiting up to timeout_ms for a live source.
-  virtual Read read(int timeout_ms) = 0;
-  /// Time of the record read() fetched, microseconds (input clock).
+  /// Reads the next record, waiting up to timeout_ms for a live source.
+  virtual Read next_record(int timeout_ms) = 0;
+  /// Time of the record next_record() read, microseconds (input clock).
   virtual TimeUs record_time_us() const = 0;
-  /// Copies the record read() fetched (record->time_us = record_time_us()). Allocates nothing.
-  virtual void fetch(InputRecord* record) const = 0;
+  /// Copies the record next_record() read (record->time_us = record_time_us()). Allocates
+  /// nothing.
+  virtual void copy_record(InputRecord* record) const = 0;
 
   // ---------------------------------------------------------------- estimator thread
   /// Folds one record into the input table, at record.time_us. Allocates nothing.

@@ -24,9 +24,9 @@ class SamplesCsvSource final : public InputSource {
   static std::unique_ptr<SamplesCsvSource> open(const std::string& path, double timeout_s,
                                                 std::string* error);
 
-  Read read(int timeout_ms) override;
+  Read next_record(int timeout_ms) override;
   TimeUs record_time_us() const override { return record_.time_us; }
-  void fetch(InputRecord* record) const override;
+  void copy_record(InputRecord* record) const override;
 
   void apply(const InputRecord& record) override;
   Sample sample_at(TimeUs tick_us) override;

@@ -2,12 +2,12 @@
 //
 //   InputSource's table --sample_at(T)--> Sample --Pipeline::step--> TickRecord
 //
-// The tick time T is the caller's: T_k = T_0 + k / tick_rate_hz on the input's clock (the log
-// time of a recording, CLOCK_REALTIME for a live bus), so the pipeline always sees the regular
-// grid it differences on, whatever the wake-up jitter. A TickRecord carries everything the
+// The tick time T is the caller's: T_k on the TickGrid, in the input's clock (the log time of a
+// recording, CLOCK_REALTIME for a live bus), so the pipeline always sees the regular grid it
+// differences on, whatever the wake-up jitter. A TickRecord carries everything the
 // publisher needs (estimate, diagnostic pairs, input ages) as plain values for the SPSC queue.
 //
-// Thread-safety: not thread-safe (one estimator thread). tick() allocates nothing.
+// Not thread-safe (one thread ticks). tick() allocates nothing.
 #pragma once
 
 #include <array>

@@ -1,10 +1,10 @@
 // The daemon: vmassd's threads around the ticking front end (vmass_runtime), LCM publishing,
 // state persistence and systemd; tools/vmassd/main.cpp only parses the command line.
 //
-//   receive thread    runtime::InputSource::read/fetch -> SpscQueue<InputRecord> (a live bus:
-//   frames
-//                     re-stamped into the tick clock, dropped and counted when the queue is
-//                     full; a recording: paced by its log time / speed, never dropped)
+//   receive thread    runtime::InputSource::next_record/copy_record -> SpscQueue<InputRecord>
+//                     (a live bus: frames re-stamped into the tick clock, dropped and counted
+//                     when the queue is full; a recording: paced by its log time / speed, never
+//                     dropped)
 //   estimator thread  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME) at tick_rate * speed;
 //                     drains the input queue into the source's table (SignalTable::on_frame for
 //                     CAN), sample_at + Pipeline::step; TickRecord -> SpscQueue; overruns counted
