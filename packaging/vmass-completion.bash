@@ -33,4 +33,4 @@ _vmass_complete() {
   fi
 }
 complete -F _vmass_complete vmassd vmass-replay vmass-calibrate vmass-sim vmass-can \
-  vmass-monitor vmass-plot vmass-lcmlog-csv vmass-log-convert vmass-spy
+  vmass-monitor vmass-plot vmass-lcmlog-csv vmass-log-convert vmass-spy vmass-numerics

@@ -2,9 +2,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <utility>
+
+#include "vmass/io/regular_file.hpp"
 
 namespace vmass::calibrate {
 namespace {
@@ -229,15 +230,13 @@ BallastCsvRead parse_ballast_csv(std::string_view text, const std::string& name)
 }
 
 BallastCsvRead read_ballast_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const io::FileText file = io::read_regular_file(path, io::kMaxTableBytes, "ballast CSV");
+  if (!file.ok()) {
     BallastCsvRead out;
-    out.error = path + ": cannot open";
+    out.error = file.error;
     return out;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_ballast_csv(text.str(), path);
+  return parse_ballast_csv(file.text, path);
 }
 
 std::string parse_mass_list(const std::string& text, std::vector<double>* out) {

@@ -264,14 +264,25 @@ std::string format_candump_line(const CanFrame& frame, std::string_view interfac
 }
 
 CandumpReader::CandumpReader(std::istream& in, std::string source)
-    : in_(in), source_(std::move(source)) {}
+    : lines_(in, kMaxLineBytes), source_(std::move(source)) {}
+
+void CandumpReader::corrupt_line(const std::string& why) {
+  ++stats_.corrupt;
+  CandumpError e{line_no_, source_ + ":" + std::to_string(line_no_) + ": " + why};
+  if (callback_) callback_(e);
+  if (errors_.size() < kMaxKeptErrors) errors_.push_back(std::move(e));
+}
 
 bool CandumpReader::next(CandumpRecord* record) {
   CandumpRecord scratch;
   if (record == nullptr) record = &scratch;
-  while (std::getline(in_, line_)) {
+  while (lines_.next(&line_)) {
     ++line_no_;
     ++stats_.lines;
+    if (lines_.overlong()) {
+      corrupt_line("line longer than " + std::to_string(kMaxLineBytes) + " bytes");
+      continue;
+    }
     switch (parse_candump_line(line_, record, &why_)) {
       case CandumpLine::kFrame:
         ++stats_.frames;
@@ -282,15 +293,12 @@ bool CandumpReader::next(CandumpRecord* record) {
       case CandumpLine::kComment:
         ++stats_.comments;
         break;
-      case CandumpLine::kCorrupt: {
-        ++stats_.corrupt;
-        CandumpError e{line_no_, source_ + ":" + std::to_string(line_no_) + ": " + why_};
-        if (callback_) callback_(e);
-        if (errors_.size() < kMaxKeptErrors) errors_.push_back(std::move(e));
+      case CandumpLine::kCorrupt:
+        corrupt_line(why_);
         break;
-      }
     }
   }
+  if (!lines_.error().empty()) read_error_ = source_ + ": read error: " + lines_.error();
   return false;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bitset>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -83,6 +84,7 @@ void Parser::check_layout(Message& m) {
     } else {
       last = (sg.start_bit / 8) * 8 + (7 - sg.start_bit % 8) + sg.length - 1;
     }
+    check_declared_range(m, sg);
     if (last >= payload_bits) {
       error_at(sg.line,
                who + ": bits " + std::to_string(sg.start_bit) + "|" + std::to_string(sg.length) +
@@ -167,6 +169,42 @@ void Parser::resolve_mux(Message& m) {
   }
   m.signals = std::move(kept);
   check_overlaps(m);
+  check_mux_values(m);
+}
+
+void Parser::check_declared_range(const Message& m, const Signal& sg) {
+  if (!sg.has_range || sg.value_type != ValueType::kInteger || sg.factor == 0.0) return;
+  // What the bits carry, in physical units (half a step of tolerance for rounded ranges).
+  const double raw_lo = sg.is_signed ? -std::ldexp(1.0, sg.length - 1) : 0.0;
+  const double raw_hi =
+      sg.is_signed ? std::ldexp(1.0, sg.length - 1) - 1.0 : std::ldexp(1.0, sg.length) - 1.0;
+  const double a = raw_lo * sg.factor + sg.offset, b = raw_hi * sg.factor + sg.offset;
+  // Slack: half a step, and ranges rounded to 5 significant digits (429497000 for 2^32 * 0.1).
+  const double lo = std::min(a, b), hi = std::max(a, b);
+  const double slack = std::max(std::abs(sg.factor) / 2.0, 1e-5 * (hi - lo));
+  if (sg.minimum >= lo - slack && sg.maximum <= hi + slack) return;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "declared range [%.10g|%.10g] lies outside what its %d %s bits carry [%.10g|%.10g]",
+                sg.minimum, sg.maximum, sg.length, sg.is_signed ? "signed" : "unsigned", lo, hi);
+  warning(sg.line, "signal " + sg.name + " of message " + m.name + ": " + text +
+                       "; vmass does not discard values by DBC ranges");
+}
+
+void Parser::check_mux_values(const Message& m) {
+  for (const Signal& sg : m.signals) {
+    if (sg.mux_parent < 0 || sg.mux_ranges.empty()) continue;
+    const Signal& sw = m.signals[static_cast<std::size_t>(sg.mux_parent)];
+    const std::uint64_t max_raw = sw.length >= 64 ? ~0ull : (1ull << sw.length) - 1;
+    bool reachable = false;
+    for (const MuxRange& r : sg.mux_ranges) reachable = reachable || r.lo <= max_raw;
+    if (!reachable) {
+      warning(sg.line, "signal " + sg.name + " of message " + m.name +
+                           " can never be present: its multiplexer value " +
+                           std::to_string(sg.mux_ranges.front().lo) + " exceeds what switch " +
+                           sw.name + " (" + std::to_string(sw.length) + " bits) can hold");
+    }
+  }
 }
 
 std::bitset<8 * kFdMaxLen> Parser::bits_of(const Signal& sg) {

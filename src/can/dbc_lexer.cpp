@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dbc_parser.hpp"
+#include "vmass/io/excerpt.hpp"
 
 namespace vmass::can::dbc_detail {
 namespace {
@@ -130,6 +131,53 @@ void Parser::skip_statement() {
   }
 }
 
+void Parser::skip_rest_of_line() {
+  while (!eof() && peek() != '\n') ++pos_;
+  if (!eof()) advance();
+}
+
+bool Parser::is_keyword(std::string_view word) {
+  static constexpr std::string_view kKeywords[] = {"VERSION",
+                                                   "NS_",
+                                                   "BS_",
+                                                   "BU_",
+                                                   "BO_",
+                                                   "SG_",
+                                                   "CM_",
+                                                   "VAL_",
+                                                   "VAL_TABLE_",
+                                                   "BA_DEF_",
+                                                   "BA_DEF_DEF_",
+                                                   "BA_",
+                                                   "SIG_VALTYPE_",
+                                                   "SG_MUL_VAL_",
+                                                   "EV_",
+                                                   "ENVVAR_DATA_",
+                                                   "SGTYPE_",
+                                                   "SGTYPE_VAL_",
+                                                   "SIG_GROUP_",
+                                                   "SIG_TYPE_REF_",
+                                                   "BO_TX_BU_",
+                                                   "CAT_DEF_",
+                                                   "CAT_",
+                                                   "FILTER",
+                                                   "BU_SG_REL_",
+                                                   "BU_EV_REL_",
+                                                   "BU_BO_REL_",
+                                                   "SIGTYPE_VALTYPE_",
+                                                   "EV_DATA_",
+                                                   "BA_DEF_REL_",
+                                                   "BA_REL_",
+                                                   "BA_DEF_DEF_REL_",
+                                                   "BA_DEF_SGTYPE_",
+                                                   "BA_SGTYPE_",
+                                                   "NS_DESC_"};
+  for (std::string_view k : kKeywords) {
+    if (word == k) return true;
+  }
+  return false;
+}
+
 bool Parser::fail(const std::string& what) {
   if (failed_) return false;
   failed_ = true;
@@ -142,7 +190,7 @@ bool Parser::fail(const std::string& what) {
     const std::size_t b = pos_;
     std::size_t e = b;
     while (e < s_.size() && e - b < 20 && s_[e] != '\n' && s_[e] != '\r') ++e;
-    found = "'" + std::string(s_.substr(b, e - b)) + "'";
+    found = "'" + io::excerpt(s_.substr(b, e - b)) + "'";
   }
   out_.diagnostics.push_back(
       {Severity::kError, std::string(file_), line_, column(), what + ", found " + found});
@@ -156,6 +204,10 @@ void Parser::error_at(int line, const std::string& what) {
 void Parser::deviation(int line, const std::string& what) {
   out_.diagnostics.push_back(
       {options_.strict ? Severity::kError : Severity::kWarning, std::string(file_), line, 0, what});
+}
+
+void Parser::warning(int line, const std::string& what) {
+  out_.diagnostics.push_back({Severity::kWarning, std::string(file_), line, 0, what});
 }
 
 bool Parser::expect(char c, const char* context) {
@@ -173,7 +225,14 @@ bool Parser::read_name(std::string& out, const char* what, bool newline_ok) {
   }
   const int line = line_;
   if (!is_word_char(peek())) return fail(std::string("expected ") + what);
-  out = std::string(read_word());
+  const std::size_t begin = pos_;
+  const std::string_view word = read_word();
+  if (word.size() > kMaxNameBytes) {
+    pos_ = begin;
+    return fail(std::string(what) + " longer than " + std::to_string(kMaxNameBytes) +
+                " characters");
+  }
+  out = std::string(word);
   if (is_digit(out[0])) {
     deviation(line, std::string(what) + " '" + out + "' begins with a digit");
   }
@@ -228,6 +287,8 @@ bool Parser::read_string_raw(std::string& out) {
   if (peek() != '"') return fail("expected '\"'");
   const int open_line = line_;
   const int open_col = column();
+  const std::size_t open_pos = pos_;
+  const std::size_t open_line_start = line_start_;
   advance();
   out.clear();
   while (!eof()) {
@@ -247,6 +308,10 @@ bool Parser::read_string_raw(std::string& out) {
   failed_ = true;
   out_.diagnostics.push_back({Severity::kError, std::string(file_), open_line, open_col,
                               "string opened here is never closed"});
+  // Recovery goes on from the line of the opening quote, not from the end of the file.
+  pos_ = open_pos + 1;
+  line_ = open_line;
+  line_start_ = open_line_start;
   return false;
 }
 

@@ -7,12 +7,9 @@
 // with a warning. After the text, a finishing pass attaches multiplexing, checks every signal
 // against its message and applies attribute defaults.
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "vmass/can/dbc.hpp"
+#include "vmass/io/regular_file.hpp"
 
 #include "dbc_parser.hpp"
 
@@ -42,7 +39,8 @@ int Database::find_message(std::string_view message_name) const {
 }
 
 std::string DbcDiagnostic::to_string() const {
-  std::string s = file + ":" + std::to_string(line);
+  std::string s = file;
+  if (line > 0) s += ":" + std::to_string(line);
   if (column > 0) s += ":" + std::to_string(column);
   s += severity == Severity::kError ? ": error: " : ": warning: ";
   s += message;
@@ -65,19 +63,61 @@ namespace dbc_detail {
 
 void Parser::run() {
   if (s_.size() >= 3 && s_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;  // UTF-8 byte order mark
-  while (!failed_) {
+  if (!is_text()) return;
+  while (!stopped_) {
     skip_ws();
     if (eof()) break;
     statement_line_ = line_;
     const char c = peek();
     if (!is_word_char(c)) {
       fail("expected a keyword (VERSION, BO_, SG_, CM_, ...)");
-      break;
+    } else {
+      statement(read_word());
     }
-    const std::string_view kw = read_word();
-    statement(kw);
+    if (failed_) recover();
   }
-  finish();  // also after an error: what was loaded is checked and stays consistent
+  finish();  // also after errors: what was loaded is checked and stays consistent
+  if (db_.messages.empty() && out_.error_count() == 0) {
+    deviation(0, "no message (BO_) in the file");
+  }
+}
+
+bool Parser::is_text() {
+  const std::size_t nul = s_.find('\0');
+  if (nul != std::string_view::npos) {
+    const int line = 1 + static_cast<int>(std::count(s_.begin(), s_.begin() + nul, '\n'));
+    error_at(line, "binary data (a NUL byte): not a DBC file");
+    return false;
+  }
+  std::size_t i = pos_;
+  while (i < s_.size() && (s_[i] == ' ' || s_[i] == '\t' || s_[i] == '\r' || s_[i] == '\n')) ++i;
+  if (i == s_.size()) {
+    error_at(0, "empty file: not a DBC file");
+    return false;
+  }
+  return true;
+}
+
+void Parser::recover() {
+  failed_ = false;
+  if (++errors_recovered_ >= kMaxErrors) {
+    error_at(line_, "too many errors (" + std::to_string(kMaxErrors) +
+                        "); the rest of the file is not read");
+    stopped_ = true;
+    return;
+  }
+  // The statement is abandoned: on to the next line that starts with a keyword.
+  skip_rest_of_line();
+  while (!eof()) {
+    const std::size_t line_begin = pos_;
+    skip_blanks();
+    const std::size_t word_begin = pos_;
+    const std::string_view word = read_word();
+    pos_ = word_begin;
+    if (is_keyword(word)) return;
+    pos_ = line_begin;
+    skip_rest_of_line();
+  }
 }
 
 }  // namespace dbc_detail
@@ -92,16 +132,15 @@ DbcParseResult parse_dbc(std::string_view text, std::string_view file,
 }
 
 DbcParseResult load_dbc_file(const std::string& path, const DbcParseOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const io::FileText file = io::read_regular_file(path, io::kMaxDbcBytes, "DBC");
+  if (!file.ok()) {
     DbcParseResult result;
+    // "path: cannot open|read the DBC: why": the diagnostic adds the path itself.
     result.diagnostics.push_back(
-        {Severity::kError, path, 0, 0, std::string("cannot open: ") + std::strerror(errno)});
+        {Severity::kError, path, 0, 0, file.error.substr(path.size() + 2)});
     return result;
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_dbc(ss.str(), path, options);
+  return parse_dbc(file.text, path, options);
 }
 
 }  // namespace vmass::can

@@ -45,7 +45,17 @@ class Parser {
       : s_(text), file_(file), options_(options), out_(out), db_(out.database) {}
   void run();
 
+  static constexpr int kMaxErrors = 100;  ///< then the rest of the file is not read
+  static constexpr std::size_t kMaxNameBytes = 256;
+
  private:
+  /// False (one error) for binary data or an empty file.
+  bool is_text();
+  /// After a failed statement: on to the next line that starts with a keyword.
+  void recover();
+  void skip_rest_of_line();
+  static bool is_keyword(std::string_view word);
+
   // ---------------------------------------------------------------- cursor
   bool eof() const { return pos_ >= s_.size(); }
   char peek() const { return eof() ? '\0' : s_[pos_]; }
@@ -66,6 +76,8 @@ class Parser {
   void error_at(int line, const std::string& what);
   /// A departure from the format that we load as meant: a warning, or an error in strict mode.
   void deviation(int line, const std::string& what);
+  /// Worth knowing, but within the format: a warning even in strict mode.
+  void warning(int line, const std::string& what);
 
   // ---------------------------------------------------------------- tokens
   bool expect(char c, const char* context);
@@ -121,6 +133,11 @@ class Parser {
   void finish();
   static constexpr int kMuxBroken = -100;
   void check_layout(Message& m);
+  /// A [min|max] the signal's bits cannot carry (e.g. [0|65535] on a signed 16-bit yaw rate):
+  /// a warning; vmass does not discard values by DBC ranges.
+  void check_declared_range(const Message& m, const Signal& sg);
+  /// Multiplexed signals whose values their switch can never hold: a warning.
+  void check_mux_values(const Message& m);
   void resolve_mux(Message& m);
   static std::bitset<8 * kFdMaxLen> bits_of(const Signal& sg);
 
@@ -146,10 +163,13 @@ class Parser {
   int line_ = 1;
   std::size_t line_start_ = 0;
   int statement_line_ = 1;
-  bool failed_ = false;
+  bool failed_ = false;   ///< the current statement failed (recover() skips the rest of it)
+  bool stopped_ = false;  ///< too many errors: the rest of the file is not read
+  int errors_recovered_ = 0;
   int current_message_ = kNone;
   std::unordered_map<std::uint64_t, int> by_key_;     // (extended << 32 | id) -> message
   std::unordered_map<std::uint32_t, int> by_raw_id_;  // id as written -> message
+  std::unordered_map<std::string, int> by_name_;      // message name -> first message
   std::unordered_set<std::uint32_t> ignored_ids_;     // VECTOR__INDEPENDENT_SIG_MSG
   std::unordered_set<long> explicit_cycle_, explicit_format_;
   std::vector<MulValEntry> mul_vals_;

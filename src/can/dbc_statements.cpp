@@ -82,6 +82,7 @@ bool Parser::read_message_ref(std::uint32_t& raw_id) {
 
 void Parser::parse_bo() {
   const int line = statement_line_;
+  current_message_ = kIgnored;  // until it loads: the signals of a broken BO_ are skipped
   std::uint32_t raw_id = 0;
   if (!read_message_ref(raw_id)) return;
   Message m;
@@ -141,6 +142,11 @@ void Parser::parse_bo() {
     return;
   }
   const int index = static_cast<int>(db_.messages.size());
+  if (const auto [it, inserted] = by_name_.emplace(m.name, index); !inserted) {
+    deviation(line, "message name " + m.name + " used twice (first at line " +
+                        std::to_string(db_.messages[static_cast<std::size_t>(it->second)].line) +
+                        ")");
+  }
   by_key_[key] = index;
   by_raw_id_[raw_id] = index;
   db_.messages.push_back(std::move(m));
@@ -185,8 +191,15 @@ void Parser::parse_sg() {
 }
 
 bool Parser::read_mux_indicator(Signal& sg) {
+  const std::size_t begin = pos_;
   const std::string_view mux = read_word();
   if (mux == "M") {
+    sg.is_multiplexor = true;
+    return true;
+  }
+  if (mux == "m") {  // real files write the switch so, with its pages as m2, m3 after it
+    deviation(statement_line_,
+              "signal " + sg.name + ": multiplexer switch written as a lone 'm'; read as 'M'");
     sg.is_multiplexor = true;
     return true;
   }
@@ -194,7 +207,10 @@ bool Parser::read_mux_indicator(Signal& sg) {
     std::size_t e = 1;
     while (e < mux.size() && is_digit(mux[e])) ++e;
     std::uint64_t v = 0;
-    std::from_chars(mux.data() + 1, mux.data() + e, v);
+    if (std::from_chars(mux.data() + 1, mux.data() + e, v).ec != std::errc()) {
+      pos_ = begin;
+      return fail("multiplexer value above 64 bits");
+    }
     sg.mux_value = v;
     if (e == mux.size()) return true;
     if (mux.substr(e) == "M") {
@@ -231,6 +247,13 @@ bool Parser::read_scaling(Signal& sg) {
     return false;
   }
   sg.has_range = !(sg.minimum == 0.0 && sg.maximum == 0.0);
+  if (sg.factor == 0.0) {
+    deviation(statement_line_, "signal " + sg.name + ": factor 0: its value is always the offset");
+  }
+  if (sg.has_range && sg.minimum > sg.maximum) {
+    deviation(statement_line_, "signal " + sg.name + ": minimum above maximum; range ignored");
+    sg.has_range = false;
+  }
   return true;
 }
 

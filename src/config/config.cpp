@@ -1,10 +1,9 @@
 #include "vmass/config/config.hpp"
 
-#include <fstream>
-#include <sstream>
-
 #include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
+#include "vmass/config/yaml_tree.hpp"
+#include "vmass/io/regular_file.hpp"
 
 namespace vmass {
 namespace {
@@ -27,12 +26,24 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
   r.read("rolling_resistance_coeff", &v->rolling_resistance_coeff);
   r.read("wheel_torque_accuracy_fraction", &v->wheel_torque_accuracy_fraction);
   r.read("wheel_radius_accuracy_fraction", &v->wheel_radius_accuracy_fraction);
+  r.read("pitch_gradient_deg_per_g", &v->pitch_gradient_deg_per_g);
+  r.read("pitch_gradient_std_deg_per_g", &v->pitch_gradient_std_deg_per_g);
+  r.read("rotating_mass_accuracy_fraction", &v->rotating_mass_accuracy_fraction);
+  r.read("gear_ratios", &v->gear_ratios);
+  r.read("final_drive_ratio", &v->final_drive_ratio);
+  r.read("driveline_efficiency", &v->driveline_efficiency);
+  r.read("max_driveline_slip_fraction", &v->max_driveline_slip_fraction);
   r.reject_unknown_keys();
 }
 
-void read_suspension(YamlReader r, SuspensionParams* s) {
+// No section: the car has no rear deflection sensor (the estimator starts from the no-static
+// prior). `levelled: true`: it has one on a self-levelling axle, which reads no load.
+void read_suspension(YamlReader r, bool present, SuspensionParams* s) {
+  s->has_sensor = present;
+  if (!present) return;
+  r.read("levelled", &s->levelled);
   for (const SuspensionField& field : kSuspensionFields) {
-    if (field.required) {
+    if (field.required && !s->levelled) {
       r.require(field.key, &(s->*field.member));
     } else {
       r.read(field.key, &(s->*field.member));
@@ -67,12 +78,16 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.read("standstill_window_s", &p.standstill_window_s);
     s.read("max_deflection_std_m", &p.max_deflection_std_m);
     s.read("prior_std_kg", &p.prior_std_kg);
-    s.read("prior_std_fraction_of_added", &p.prior_std_fraction_of_added);
+    s.read("prior_std_fraction_of_empty", &p.prior_std_fraction_of_empty);
+    s.read("payload_x_min_fraction", &p.payload_x_min_fraction);
+    s.read("payload_x_max_fraction", &p.payload_x_max_fraction);
+    s.read("payload_y_max_fraction", &p.payload_y_max_fraction);
     s.read("out_of_range_prior_std_kg", &p.out_of_range_prior_std_kg);
     s.read("no_static_prior_std_kg", &p.no_static_prior_std_kg);
     s.read("mu_prior_std_n", &p.mu_prior_std_n);
     s.read("load_change_sigma", &p.load_change_sigma);
-    s.read("min_load_change_m", &p.min_load_change_m);
+    s.read("min_load_change_kg", &p.min_load_change_kg);
+    s.read("min_load_change_fraction", &p.min_load_change_fraction);
     s.read("max_grade_change_mps2", &p.max_grade_change_mps2);
     s.reject_unknown_keys();
   }
@@ -85,6 +100,33 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.read("min_abs_delta_force_n", &p.min_abs_delta_force_n);
     s.read("min_speed_mps", &p.min_speed_mps);
     s.read("weight", &p.weight);
+    s.read("min_excitation_sigma", &p.min_excitation_sigma);
+    s.read("settle_s", &p.settle_s);
+    s.read("use_braking", &p.use_braking);
+    s.read("brake_applied_weight_fraction", &p.brake_applied_weight_fraction);
+    s.read("noise_memory_s", &p.noise_memory_s);
+    s.read("subtract_aero", &p.subtract_aero);
+    std::string source(accel_source_name(p.accel_source));
+    s.read("accel_source", &source);
+    if (source == "accelerometer") {
+      p.accel_source = AccelSource::kAccelerometer;
+    } else if (source == "wheel_speed") {
+      p.accel_source = AccelSource::kWheelSpeed;
+    } else if (source == "calibrated") {
+      p.accel_source = AccelSource::kCalibrated;
+    } else {
+      s.fail("accel_source",
+             "expected accelerometer, wheel_speed or calibrated, got '" + source + "'");
+    }
+    s.read("scale_memory_s", &p.scale_memory_s);
+    YamlReader lag = s.child("lag");
+    lag.read("enabled", &p.lag.enabled);
+    lag.read("max_lag_s", &p.lag.max_lag_s);
+    lag.read("memory_s", &p.lag.memory_s);
+    lag.read("min_correlation", &p.lag.min_correlation);
+    lag.read("min_evidence_s", &p.lag.min_evidence_s);
+    lag.read("fixed_lag_s", &p.lag.fixed_lag_s);
+    lag.reject_unknown_keys();
     s.reject_unknown_keys();
   }
   {
@@ -109,8 +151,21 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.reject_unknown_keys();
   }
   {
+    YamlReader s = r.child("load_change");
+    LoadChangeParams& p = e->load_change;
+    s.read("detect_in_motion", &p.detect_in_motion);
+    s.read("min_stop_s", &p.min_stop_s);
+    s.read("decide_sigma", &p.decide_sigma);
+    s.read("min_change_fraction", &p.min_change_fraction);
+    int min_pairs = static_cast<int>(p.min_pairs);
+    s.read("min_pairs", &min_pairs);
+    p.min_pairs = min_pairs;
+    s.reject_unknown_keys();
+  }
+  {
     YamlReader s = r.child("supervisor");
     s.read("innovation_gate_sigma", &e->supervisor.innovation_gate_sigma);
+    s.read("huber_k", &e->supervisor.huber_k);
     s.read("min_pairs_before_gating", &e->supervisor.min_pairs_before_gating);
     s.read("max_consecutive_rejections", &e->supervisor.max_consecutive_rejections);
     s.reject_unknown_keys();
@@ -133,17 +188,46 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
   r.reject_unknown_keys();
 }
 
+/// PipelineParams::validate()'s "key what; key what" as "file:line: key: what" lines, the line
+/// being where the key is written (or its section, for a key left at its default).
+std::string located(const std::string& invalid, const YAML::Node& root, const std::string& file) {
+  std::string out;
+  std::size_t begin = 0;
+  while (begin < invalid.size()) {
+    std::size_t end = invalid.find("; ", begin);
+    if (end == std::string::npos) end = invalid.size();
+    const std::string one = invalid.substr(begin, end - begin);
+    const std::size_t space = one.find(' ');
+    std::string key = one.substr(0, space);
+    int line = line_of_key(root, key);
+    // The estimator's sub-sections name their keys from the section down ("rls.forgetting_factor").
+    if (line == 0 && line_of_key(root, "estimator." + key) > 0) {
+      key = "estimator." + key;
+      line = line_of_key(root, key);
+    }
+    if (!out.empty()) out += "\n";
+    out += file + (line > 0 ? ":" + std::to_string(line) : "") + ": " + key + ":" +
+           (space == std::string::npos ? "" : one.substr(space));
+    begin = end + 2;
+  }
+  return out;
+}
+
 ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::string& directory) {
   ConfigLoad out;
   try {
+    if (std::string duplicate = duplicate_key_error(root, file); !duplicate.empty()) {
+      out.error = std::move(duplicate);
+      return out;
+    }
     Config c;
     c.file = file;
     c.directory = directory;
     YamlReader top(root, file, "");
     if (!top.has("vehicle")) top.fail("vehicle", "required section is missing");
-    if (!top.has("suspension")) top.fail("suspension", "required section is missing");
     read_vehicle(top.child("vehicle"), &c.pipeline.vehicle);
-    read_suspension(top.child("suspension"), &c.pipeline.suspension);
+    const bool has_suspension = top.has("suspension");
+    read_suspension(top.child("suspension"), has_suspension, &c.pipeline.suspension);
     read_estimator(top.child("estimator"), &c.pipeline.estimator);
     c.can = top.raw("can");
     c.lcm = top.raw("lcm");
@@ -151,7 +235,7 @@ ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::str
     top.reject_unknown_keys();
     const std::string invalid = c.pipeline.validate();
     if (!invalid.empty()) {
-      out.error = file + ": " + invalid;
+      out.error = located(invalid, root, file);
       return out;
     }
     out.config = std::move(c);
@@ -171,18 +255,16 @@ std::string Config::resolve_path(const std::string& path) const {
 }
 
 ConfigLoad load_config(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const io::FileText text = io::read_regular_file(path, io::kMaxConfigBytes, "config");
+  if (!text.ok()) {
     ConfigLoad out;
-    out.error = path + ": cannot open the config file";
+    out.error = text.error;
     return out;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   const auto slash = path.find_last_of('/');
   const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash);
   try {
-    return parse(YAML::Load(text.str()), path, directory);
+    return parse(YAML::Load(text.text), path, directory);
   } catch (const YAML::Exception& e) {
     ConfigLoad out;
     out.error = path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;

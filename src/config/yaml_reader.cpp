@@ -5,6 +5,9 @@
 #include <limits>
 #include <locale>
 #include <sstream>
+#include <string_view>
+
+#include "vmass/io/excerpt.hpp"
 
 namespace vmass {
 namespace {
@@ -30,6 +33,55 @@ bool parse_double(const std::string& text, double* out) {
   return true;
 }
 
+/// The largest magnitude a number may have for the unit its key ends in: beyond it the value
+/// means nothing physical and only overflows what is computed from it (1e300 kg, a timeout of
+/// 1e13 s whose microseconds do not fit in 64 bits). Infinities are left to the validation of
+/// the keys that allow them.
+struct UnitBound {
+  const char* suffix;
+  double max_abs;
+  const char* unit;
+};
+constexpr UnitBound kUnitBounds[] = {
+    {"_s", 1e6, "s"},
+    {"_hz", 1e6, "Hz"},
+    {"_kg", 1e7, "kg"},
+    {"_m", 1e4, "m"},
+    {"_m2", 1e4, "m^2"},
+    {"_mps", 1e4, "m/s"},
+    {"_mps2", 1e4, "m/s^2"},
+    {"_n", 1e9, "N"},
+    {"_nm", 1e9, "N m"},
+    {"_pa", 1e10, "Pa"},
+    {"_n_per_m", 1e10, "N/m"},
+    {"_n_per_m2", 1e12, "N/m^2"},
+    {"_n_per_rad", 1e9, "N/rad"},
+    {"_n_per_pa", 1e3, "N/Pa"},
+    {"_deg", 1e6, "deg"},
+    {"_rad", 1e4, "rad"},
+    {"_radps", 1e4, "rad/s"},
+    {"_kg_per_m3", 1e4, "kg/m^3"},
+};
+
+const UnitBound* unit_bound(const std::string& key) {
+  const UnitBound* best = nullptr;  // the longest matching suffix: _n_per_m before _m
+  for (const UnitBound& b : kUnitBounds) {
+    const std::string_view suffix(b.suffix);
+    if (key.size() > suffix.size() &&
+        key.compare(key.size() - suffix.size(), suffix.size(), suffix.data(), suffix.size()) == 0) {
+      if (best == nullptr || suffix.size() > std::string_view(best->suffix).size()) best = &b;
+    }
+  }
+  return best;
+}
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << v;
+  return s.str();
+}
+
 }  // namespace
 
 YamlReader::YamlReader(YAML::Node node, std::string file, std::string path)
@@ -45,6 +97,7 @@ YamlReader::YamlReader(YAML::Node node, std::string file, std::string path)
 int YamlReader::line_of(const YAML::Node& n) const { return n.Mark().line + 1; }
 
 std::string YamlReader::full_key(const std::string& key) const {
+  if (key.empty()) return path_;  // the section itself
   return path_.empty() ? key : path_ + "." + key;
 }
 
@@ -75,8 +128,13 @@ void YamlReader::read(const std::string& key, double* out) {
   if (!has(key)) return;
   YAML::Node n = value_node(key);
   if (!n.IsScalar() || !parse_double(n.Scalar(), out) || std::isnan(*out)) {
-    fail(key,
-         "expected a number, got '" + (n.IsScalar() ? n.Scalar() : std::string("<map>")) + "'");
+    fail(key, "expected a number, got '" +
+                  (n.IsScalar() ? io::excerpt(n.Scalar()) : std::string("<map>")) + "'");
+  }
+  const UnitBound* bound = unit_bound(key);
+  if (bound != nullptr && std::isfinite(*out) && std::abs(*out) > bound->max_abs) {
+    fail(key, number_text(*out) + " is beyond any plausible value (|x| <= " +
+                  number_text(bound->max_abs) + " " + bound->unit + ")");
   }
 }
 
@@ -93,7 +151,7 @@ void YamlReader::read(const std::string& key, bool* out) {
   used_.push_back(key);
   if (!has(key)) return;
   YAML::Node n = value_node(key);
-  const std::string s = n.IsScalar() ? n.Scalar() : "";
+  const std::string s = n.IsScalar() ? io::excerpt(n.Scalar()) : "";
   if (s == "true" || s == "True" || s == "yes" || s == "on") {
     *out = true;
   } else if (s == "false" || s == "False" || s == "no" || s == "off") {
@@ -119,8 +177,14 @@ void YamlReader::read(const std::string& key, std::vector<double>* out) {
   out->clear();
   for (std::size_t i = 0; i < n.size(); ++i) {
     double v = 0.0;
-    if (!n[i].IsScalar() || !parse_double(n[i].Scalar(), &v)) {
+    if (!n[i].IsScalar() || !parse_double(n[i].Scalar(), &v) || std::isnan(v)) {
       fail(key, "element " + std::to_string(i) + " is not a number");
+    }
+    const UnitBound* bound = unit_bound(key);
+    if (bound != nullptr && !(std::abs(v) <= bound->max_abs)) {
+      fail(key, "element " + std::to_string(i) + ": " + number_text(v) +
+                    " is beyond any plausible value (|x| <= " + number_text(bound->max_abs) + " " +
+                    bound->unit + ")");
     }
     out->push_back(v);
   }
@@ -152,7 +216,8 @@ void YamlReader::reject_unknown_keys() const {
     const std::string key = kv.first.as<std::string>();
     if (std::find(used_.begin(), used_.end(), key) == used_.end()) {
       std::ostringstream msg;
-      msg << file_ << ":" << line_of(kv.first) << ": " << full_key(key) << ": unknown key";
+      msg << file_ << ":" << line_of(kv.first) << ": " << io::excerpt(full_key(key))
+          << ": unknown key";
       throw ConfigError(msg.str());
     }
   }

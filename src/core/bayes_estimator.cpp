@@ -93,7 +93,7 @@ void BayesEstimator::Sufficient::add(const RegressionPair& pair) {
   if (!pair_is_usable(pair)) return;
   const Eigen::Vector2d phi(pair.delta_accel_mps2, 1.0);
   const double e = pair.y_n - phi.dot(origin);
-  const double w = pair.weight * pair.information;
+  const double w = relative_weight(pair, reference_noise_n) * pair.information;
   phi_t_w_phi.noalias() += w * phi * phi.transpose();
   phi_t_w_y += (w * e) * phi;
   y_t_w_y += w * e * e;
@@ -133,6 +133,7 @@ void BayesEstimator::reset(const MassPrior& prior) {
 void BayesEstimator::clear_pending() {
   pending_ = Sufficient{};
   pending_.origin = posterior_.mean;
+  pending_.reference_noise_n = params_.noise_std_guess_n;
   pending_count_ = 0;
 }
 
@@ -157,7 +158,8 @@ PairPrediction BayesEstimator::predict(const RegressionPair& pair) const {
     out.variance_n2 = std::numeric_limits<double>::infinity();
     return out;
   }
-  const double spread = 1.0 / pair.weight + phi.dot(posterior_.scaled_covariance * phi);
+  const double spread = 1.0 / relative_weight(pair, params_.noise_std_guess_n) +
+                        phi.dot(posterior_.scaled_covariance * phi);
   const double a = posterior_.shape;
   const double b = posterior_.scale;
   double variance = 0.0;

@@ -1,5 +1,7 @@
 #include "vmass/core/estimate.hpp"
 
+#include <cmath>
+
 namespace vmass {
 
 std::string_view status_name(EstimateStatus s) {
@@ -36,6 +38,8 @@ std::string_view reason_name(StatusReason r) {
       return "inputs_invalid";
     case StatusReason::kRestored:
       return "restored";
+    case StatusReason::kNoLoadSensor:
+      return "no_load_sensor";
   }
   return "unknown";
 }
@@ -54,6 +58,17 @@ std::string Estimate::describe_reason() const {
     }
   }
   return text;
+}
+
+std::string Estimate::describe_rejection() const {
+  if (plausible) return "";
+  const auto kg = [](double v) { return std::to_string(static_cast<long long>(std::lround(v))); };
+  if (implausible_mass_kg < plausible_low_kg) {
+    return kg(implausible_mass_kg) + " kg below the plausible band (from " + kg(plausible_low_kg) +
+           " kg)";
+  }
+  return kg(implausible_mass_kg) + " kg above the plausible band (up to " + kg(plausible_high_kg) +
+         " kg)";
 }
 
 }  // namespace vmass

@@ -36,6 +36,14 @@ std::string_view verdict_name(PairVerdict v) {
       return "non_finite";
     case PairVerdict::kInnovation:
       return "innovation";
+    case PairVerdict::kSettling:
+      return "settling";
+    case PairVerdict::kNotClean:
+      return "not_clean";
+    case PairVerdict::kImplausible:
+      return "implausible";
+    case PairVerdict::kAwaitingLag:
+      return "awaiting_lag";
     case PairVerdict::kCount:
       break;
   }

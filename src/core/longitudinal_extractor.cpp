@@ -2,18 +2,50 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "vmass/core/param_check.hpp"
 
 namespace vmass {
+
+namespace {
+// Starting noise scale: a residual of this acceleration times the reference mass, m/s^2.
+constexpr double kInitialNoiseMps2 = 0.02;
+// A residual counts at most this many scales in the robust mean (one-sided Huber).
+constexpr double kResidualClip = 3.0;
+// The plausible band of the mass a pair implies, relative to the empty and maximum masses.
+constexpr double kImpliedLowPerEmpty = 0.5;
+constexpr double kImpliedHighPerMax = 1.5;
+constexpr double kImpliedHighPerEmptyWithoutMax = 2.5;
+// A pitch of k deg/g tilts the accelerometer by k a / g deg: it reads a (1 + k pi / 180).
+constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+}  // namespace
+
+std::string_view accel_source_name(AccelSource s) {
+  switch (s) {
+    case AccelSource::kAccelerometer:
+      return "accelerometer";
+    case AccelSource::kWheelSpeed:
+      return "wheel_speed";
+    case AccelSource::kCalibrated:
+      return "calibrated";
+  }
+  return "unknown";
+}
 
 std::string LongitudinalParams::validate() const {
   ParamCheck c("estimator.longitudinal");
   c.positive("max_abs_accel_y_mps2", max_abs_accel_y_mps2);
   c.non_negative("min_abs_delta_accel_x_mps2", min_abs_delta_accel_x_mps2);
   c.non_negative("min_abs_delta_force_n", min_abs_delta_force_n);
+  c.non_negative("min_excitation_sigma", min_excitation_sigma);
   c.non_negative("min_speed_mps", min_speed_mps);
+  c.non_negative("settle_s", settle_s);
+  c.in_open_range("brake_applied_weight_fraction", brake_applied_weight_fraction, 0.0, 1.0);
+  c.positive("noise_memory_s", noise_memory_s);
+  c.positive("scale_memory_s", scale_memory_s);
   c.positive("weight", weight);
+  c.nested(lag.validate());
   return c.message();
 }
 
@@ -22,16 +54,255 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
                                              const DifferencingParams& differencing)
     : vehicle_(vehicle),
       params_(params),
+      required_(input_bit(Input::kAccelX) | input_bit(Input::kSpeed) |
+                (vehicle.knows_driveline()
+                     ? input_bit(Input::kEngineTorque) | input_bit(Input::kGear)
+                     : input_bit(Input::kWheelTorque))),
+      tick_rate_hz_(differencing.tick_rate_hz),
       accel_x_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       accel_y_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       force_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
-      history_(differencing) {}
+      speed_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
+      brake_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
+      history_(differencing),
+      filtered_force_(
+          static_cast<std::size_t>(differencing.steps()) + 1 +
+          static_cast<std::size_t>(std::lround(params.lag.max_lag_s * differencing.tick_rate_hz))),
+      lag_(params.lag, differencing.tick_rate_hz),
+      y_by_lag_(static_cast<std::size_t>(lag_.max_lag_ticks()) + 1, 0.0),
+      pending_(static_cast<std::size_t>(
+                   std::ceil(params.lag.min_evidence_s * differencing.tick_rate_hz)) +
+               1),
+      pending_y_(pending_.size() * y_by_lag_.size(), 0.0),
+      reference_mass_kg_(vehicle.empty_mass_kg),
+      residual_scale_n_(kInitialNoiseMps2 * vehicle.empty_mass_kg / kScalePerMeanAbs),
+      noise_forget_(std::exp(-1.0 / (params.noise_memory_s * differencing.tick_rate_hz))),
+      scale_forget_(std::exp(-1.0 / (params.scale_memory_s * differencing.tick_rate_hz))),
+      pitch_scale_(1.0 + vehicle.pitch_gradient_deg_per_g * kRadPerDeg),
+      window_ticks_(differencing.steps()),
+      settle_ticks_(std::lround(params.settle_s * differencing.tick_rate_hz)) {}
 
 void LongitudinalExtractor::reset() {
   history_.clear();
+  filtered_force_.clear();
   accel_x_filter_.reset();
   accel_y_filter_.reset();
   force_filter_.reset();
+  speed_filter_.reset();
+  brake_filter_.reset();
+  has_previous_speed_ = false;
+  clean_ticks_ = 0;
+  pending_count_ = 0;  // pairs of a stretch we no longer difference (or of another load)
+}
+
+bool LongitudinalExtractor::braking(const Sample& s) {
+  if (s.has(Input::kBrakePressure) && vehicle_.brake_gain_n_per_pa > 0.0) {
+    // Decided on the low-passed pressure: a sensor's noise around zero (a few kPa, enough on a
+    // truck's air brakes) must not flicker the brakes on and cut every clean stretch short.
+    const double pressure_pa = brake_filter_.step(s.brake_pressure_pa);
+    const double weight_n = vehicle_.empty_mass_kg * vehicle_.gravity_mps2;
+    return pressure_pa * vehicle_.brake_gain_n_per_pa >
+           params_.brake_applied_weight_fraction * weight_n;
+  }
+  if (s.has(Input::kBrakeSwitch)) return s.brake_switch;
+  // Neither signal: only a clearly positive drive torque rules the brakes out.
+  return !(s.wheel_torque_nm > 0.0);
+}
+
+double LongitudinalExtractor::wheel_torque_nm(const Sample& s) const {
+  if (s.has(Input::kWheelTorque)) return s.wheel_torque_nm;
+  if (s.has(Input::kEngineTorque) && s.has(Input::kGear)) {
+    return vehicle_.wheel_torque_from_engine_nm(s.engine_torque_nm, s.gear);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+bool LongitudinalExtractor::driveline_slips(const Sample& s) const {
+  if (s.has(Input::kWheelTorque) || !s.has(Input::kEngineSpeed) || !s.has(Input::kGear)) {
+    return false;
+  }
+  const double through_gear_radps =
+      std::abs(s.speed_mps) / vehicle_.wheel_radius_m * vehicle_.overall_ratio(s.gear);
+  if (!(through_gear_radps > 0.0)) return true;
+  return !(std::abs(s.engine_speed_radps - through_gear_radps) <=
+           vehicle_.max_driveline_slip_fraction * through_gear_radps);
+}
+
+// The tick's force and whether the tick is clean (see the header). False: not usable at all.
+bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
+  if (!s.has_all(required_)) return false;
+  const double r = vehicle_.wheel_radius_m;
+  double force = wheel_torque_nm(s) / r;
+  const bool brakes = braking(s);
+  // The brake force is subtracted wherever the pressure is known: below the "applied" level it
+  // is small, and its gain's error with it, but it is not zero (a brake released inside a window
+  // would otherwise read as unexplained acceleration).
+  if (s.has(Input::kBrakePressure)) force -= s.brake_pressure_pa * vehicle_.brake_gain_n_per_pa;
+  if (params_.subtract_aero && vehicle_.drag_area_m2 > 0.0) {
+    force -= 0.5 * vehicle_.air_density_kg_per_m3 * vehicle_.drag_area_m2 * s.speed_mps *
+             std::abs(s.speed_mps);
+  }
+  if (!std::isfinite(force) || !std::isfinite(s.accel_x_mps2) || !std::isfinite(s.speed_mps)) {
+    return false;
+  }
+  const bool gear_ok =
+      (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) && !driveline_slips(s);
+  previous_gear_ = s.has(Input::kGear) ? s.gear : 0;
+  in->force_n = force;
+  in->clean =
+      (!brakes || params_.use_braking) && gear_ok && std::abs(s.speed_mps) >= params_.min_speed_mps;
+  return true;
+}
+
+LongitudinalExtractor::Record LongitudinalExtractor::filtered_record(const Sample& s,
+                                                                     double force_n) {
+  const double speed = speed_filter_.step(s.speed_mps);
+  const double wheel_accel = has_previous_speed_ ? (speed - previous_speed_) * tick_rate_hz_ : 0.0;
+  previous_speed_ = speed;
+  has_previous_speed_ = true;
+  const double ay = s.has(Input::kAccelY) && std::isfinite(s.accel_y_mps2) ? s.accel_y_mps2 : 0.0;
+  return Record{s.time_us,
+                accel_x_filter_.step(s.accel_x_mps2),
+                wheel_accel,
+                accel_y_filter_.step(ay),
+                force_filter_.step(force_n),
+                s.has(Input::kGear) ? s.gear : 0};
+}
+
+void LongitudinalExtractor::update_noise(double residual_n) {
+  const double clipped = std::min(std::abs(residual_n), kResidualClip * residual_scale_n_);
+  residual_scale_n_ = noise_forget_ * residual_scale_n_ + (1.0 - noise_forget_) * clipped;
+}
+
+void LongitudinalExtractor::fill_y_by_lag(const Record& now, const Record& then) {
+  const double rotating_kg = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
+  const double rotating_n = rotating_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  const std::size_t window = static_cast<std::size_t>(window_ticks_);
+  const std::size_t available = filtered_force_.size();
+  for (std::size_t lag = 0; lag < y_by_lag_.size(); ++lag) {
+    // Until enough history is kept, the longest available lag stands in.
+    const std::size_t l = std::min(lag, available - 1 - window);
+    y_by_lag_[lag] = filtered_force_.ago(l) - filtered_force_.ago(l + window) - rotating_n;
+  }
+}
+
+double LongitudinalExtractor::accel_scale() const {
+  // Used once a few seconds of excited pairs have been seen.
+  constexpr long kMinScalePairs = 300;
+  if (params_.accel_source != AccelSource::kCalibrated || scale_pairs_ < kMinScalePairs ||
+      !(scale_s_vv_ > 0.0)) {
+    return 1.0;
+  }
+  return 1.0 + scale_s_dv_ / scale_s_vv_;
+}
+
+double LongitudinalExtractor::delta_accel(const Record& now, const Record& then) const {
+  const double wheel = now.wheel_accel_mps2 - then.wheel_accel_mps2;
+  const double imu = now.accel_x_mps2 - then.accel_x_mps2;
+  switch (params_.accel_source) {
+    case AccelSource::kWheelSpeed:
+      return wheel;
+    case AccelSource::kCalibrated:  // the learned scale holds the pitch too
+      return imu / accel_scale();
+    case AccelSource::kAccelerometer:
+      break;
+  }
+  return imu / pitch_scale_;
+}
+
+// The accelerometer's change against the wheel speed's over excited pairs: the slope kappa of
+// (da_x - dv') on dv' (grade changes are noise to it, pitch and the ESC's radius error are not).
+void LongitudinalExtractor::update_scale(const Record& now, const Record& then) {
+  const double wheel = now.wheel_accel_mps2 - then.wheel_accel_mps2;
+  const double imu = now.accel_x_mps2 - then.accel_x_mps2;
+  scale_s_vv_ = scale_forget_ * scale_s_vv_ + wheel * wheel;
+  scale_s_dv_ = scale_forget_ * scale_s_dv_ + (imu - wheel) * wheel;
+  ++scale_pairs_;
+}
+
+Extraction LongitudinalExtractor::gate(const Record& now, const Record& then, Extraction out) {
+  if (std::max(std::abs(now.accel_y_mps2), std::abs(then.accel_y_mps2)) >=
+      params_.max_abs_accel_y_mps2) {
+    out.verdict = PairVerdict::kLateralAccel;
+    return out;
+  }
+  const double delta_accel = this->delta_accel(now, then);
+  const double noise_n = force_noise_n();
+  const double min_force =
+      std::max(params_.min_abs_delta_force_n, params_.min_excitation_sigma * noise_n);
+  if (std::abs(delta_accel) * reference_mass_kg_ <=
+      std::max(params_.min_abs_delta_accel_x_mps2 * reference_mass_kg_, min_force)) {
+    out.verdict = PairVerdict::kSmallDeltaAccel;
+    return out;
+  }
+  if (params_.accel_source == AccelSource::kCalibrated) update_scale(now, then);
+  lag_.add(delta_accel, y_by_lag_.data());
+  if (!lag_.identified()) {
+    keep_pending(now.time_us, delta_accel, noise_n, pair_noise_n(now, then));
+    out.verdict = PairVerdict::kAwaitingLag;
+    return out;
+  }
+  return finish(now.time_us, delta_accel, y_by_lag_.data(), noise_n, pair_noise_n(now, then), out);
+}
+
+// The pair's own noise: the measured residual scale and, in quadrature, what the rotating mass's
+// uncertainty makes of its term (large in low gears, where the converter may also be unlocked).
+double LongitudinalExtractor::pair_noise_n(const Record& now, const Record& then) const {
+  const double rotating_n = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0) *
+                            (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  return std::hypot(force_noise_n(), vehicle_.rotating_mass_accuracy_fraction * rotating_n);
+}
+
+Extraction LongitudinalExtractor::finish(TimeUs time_us, double delta_accel, const double* y_by_lag,
+                                         double noise_n, double pair_noise_n,
+                                         Extraction out) const {
+  const double y = lag_.y_at_lag(y_by_lag);
+  const double min_force =
+      std::max(params_.min_abs_delta_force_n, params_.min_excitation_sigma * noise_n);
+  if (std::abs(y) <= min_force) {
+    out.verdict = PairVerdict::kSmallDeltaForce;
+    return out;
+  }
+  const double implied_kg = y / delta_accel;
+  const double high = std::isfinite(vehicle_.max_mass_kg)
+                          ? kImpliedHighPerMax * vehicle_.max_mass_kg
+                          : kImpliedHighPerEmptyWithoutMax * vehicle_.empty_mass_kg;
+  if (!(implied_kg >= kImpliedLowPerEmpty * vehicle_.empty_mass_kg && implied_kg <= high)) {
+    out.verdict = PairVerdict::kImplausible;
+    return out;
+  }
+  out.verdict = PairVerdict::kAccepted;
+  out.pair.time_us = time_us;
+  out.pair.block = Block::kLongitudinal;
+  out.pair.delta_accel_mps2 = delta_accel;
+  out.pair.y_n = y;
+  out.pair.weight = params_.weight;
+  out.pair.noise_std_n = pair_noise_n;
+  return out;
+}
+
+void LongitudinalExtractor::keep_pending(TimeUs time_us, double delta_accel, double noise_n,
+                                         double pair_noise_n) {
+  // A full ring drops its oldest pair (the lag takes that long only when pairs are poor).
+  const std::size_t slot = (pending_next_ + pending_count_) % pending_.size();
+  if (pending_count_ < pending_.size()) {
+    ++pending_count_;
+  } else {
+    pending_next_ = (pending_next_ + 1) % pending_.size();
+  }
+  pending_[slot] = Pending{time_us, delta_accel, noise_n, pair_noise_n};
+  std::copy(y_by_lag_.begin(), y_by_lag_.end(),
+            pending_y_.begin() + static_cast<std::ptrdiff_t>(slot * y_by_lag_.size()));
+}
+
+bool LongitudinalExtractor::pop_released(Extraction* out) {
+  if (!lag_.identified() || pending_count_ == 0) return false;
+  const Pending& p = pending_[pending_next_];
+  const double* y = pending_y_.data() + pending_next_ * y_by_lag_.size();
+  *out = finish(p.time_us, p.delta_accel_mps2, y, p.noise_n, p.pair_noise_n, Extraction{});
+  pending_next_ = (pending_next_ + 1) % pending_.size();
+  --pending_count_;
+  return true;
 }
 
 Extraction LongitudinalExtractor::step(const Sample& s) {
@@ -40,64 +311,24 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
     out.verdict = PairVerdict::kDisabled;
     return out;
   }
-  if (!s.has_all(kRequired)) {
+  TickInputs in;
+  if (!read(s, &in)) {
     reset();  // a hole in the data: never difference across it
-    out.verdict = PairVerdict::kInputsInvalid;
+    out.verdict = s.has_all(required_) ? PairVerdict::kNonFinite : PairVerdict::kInputsInvalid;
     return out;
   }
-  const double force_n = s.wheel_torque_nm / vehicle_.wheel_radius_m -
-                         s.brake_pressure_pa * vehicle_.brake_gain_n_per_pa;
-  if (!std::isfinite(force_n) || !std::isfinite(s.accel_x_mps2) || !std::isfinite(s.accel_y_mps2) ||
-      !std::isfinite(s.speed_mps)) {
-    reset();
-    out.verdict = PairVerdict::kNonFinite;
+  clean_ticks_ = in.clean ? clean_ticks_ + 1 : 0;
+  const Record now = filtered_record(s, in.force_n);
+  filtered_force_.push(now.force_n);
+  const Record* then = history_.push_and_get_then(now, &out.verdict);
+  if (then == nullptr) return out;
+  if (clean_ticks_ < window_ticks_ + settle_ticks_) {
+    out.verdict = in.clean ? PairVerdict::kSettling : PairVerdict::kNotClean;
     return out;
   }
-  if (std::abs(s.speed_mps) < params_.min_speed_mps) {
-    // Standing or creeping, the brake model F = K P does not hold (the brakes hold the car with
-    // whatever force it takes): restart the filters, so that their memory of standstill does
-    // not leak into the first pairs after driving off.
-    reset();
-    out.verdict = PairVerdict::kSpeed;
-    return out;
-  }
-  const Record now{s.time_us,
-                   accel_x_filter_.step(s.accel_x_mps2),
-                   accel_y_filter_.step(s.accel_y_mps2),
-                   force_filter_.step(force_n),
-                   s.speed_mps,
-                   s.gear,
-                   s.has(Input::kGear)};
-  const Record* then_ptr = history_.push_and_get_then(now, &out.verdict);
-  if (then_ptr == nullptr) return out;
-  const Record& then = *then_ptr;
-  if (std::max(std::abs(now.accel_y_mps2), std::abs(then.accel_y_mps2)) >=
-      params_.max_abs_accel_y_mps2) {
-    out.verdict = PairVerdict::kLateralAccel;
-    return out;
-  }
-  if (now.gear_valid && then.gear_valid && now.gear != then.gear) {
-    out.verdict = PairVerdict::kGearChange;
-    return out;
-  }
-  const double delta_accel = now.accel_x_mps2 - then.accel_x_mps2;
-  const double delta_force = now.force_n - then.force_n;
-  if (std::abs(delta_accel) <= params_.min_abs_delta_accel_x_mps2) {
-    out.verdict = PairVerdict::kSmallDeltaAccel;
-    return out;
-  }
-  if (std::abs(delta_force) <= params_.min_abs_delta_force_n) {
-    out.verdict = PairVerdict::kSmallDeltaForce;
-    return out;
-  }
-  const double rotating_mass_kg = vehicle_.rotating_mass_for_gear(now.gear, now.gear_valid);
-  out.verdict = PairVerdict::kAccepted;
-  out.pair.time_us = now.time_us;
-  out.pair.block = Block::kLongitudinal;
-  out.pair.delta_accel_mps2 = delta_accel;
-  out.pair.y_n = delta_force - rotating_mass_kg * delta_accel;
-  out.pair.weight = params_.weight;
-  return out;
+  fill_y_by_lag(now, *then);
+  update_noise(lag_.y_at_lag(y_by_lag_.data()) - reference_mass_kg_ * delta_accel(now, *then));
+  return gate(now, *then, out);
 }
 
 }  // namespace vmass

@@ -7,6 +7,16 @@
 
 namespace vmass {
 
+namespace {
+
+// The plausible band of an estimate: no car weighs much less than its kerb mass (fuel and
+// options take some off), nor much above its permitted maximum (overloading happens).
+constexpr double kPlausibleLowPerEmpty = 0.9;
+constexpr double kPlausibleHighPerMax = 1.25;
+constexpr double kPlausibleHighPerEmptyWithoutMax = 3.0;
+
+}  // namespace
+
 std::string_view regressor_type_name(RegressorType t) {
   return t == RegressorType::kRls ? "rls" : "bayes";
 }
@@ -15,6 +25,7 @@ std::string EstimatorParams::validate() const {
   ParamCheck c("estimator");
   c.nested(differencing.validate());
   c.nested(static_init.validate());
+  c.nested(load_change.validate());
   c.nested(longitudinal.validate());
   c.nested(lateral.validate());
   c.nested(supervisor.validate());
@@ -29,13 +40,15 @@ std::string EstimatorParams::validate() const {
 
 double EstimatorParams::effective_pair_correlation_ticks() const {
   if (pair_correlation_ticks >= 1.0) return pair_correlation_ticks;
-  if (differencing.filter_cutoff_hz > 0.0) {
-    // The low-pass's time constant 1 / (2 pi f_c), in ticks: about how long its output noise
-    // stays correlated (3.2 ticks for 5 Hz at 100 Hz).
-    constexpr double kTwoPi = 6.283185307179586;
-    return std::max(1.0, differencing.tick_rate_hz / (kTwoPi * differencing.filter_cutoff_hz));
-  }
-  return 1.0;
+  // Pairs taken every tick share their noise with their neighbours for about the differencing
+  // window (they difference overlapping stretches) plus the low-pass's time constant
+  // 1 / (2 pi f_c), in ticks.
+  constexpr double kTwoPi = 6.283185307179586;
+  const double filter_ticks =
+      differencing.filter_cutoff_hz > 0.0
+          ? differencing.tick_rate_hz / (kTwoPi * differencing.filter_cutoff_hz)
+          : 0.0;
+  return std::max(1.0, static_cast<double>(differencing.steps()) + filter_ticks);
 }
 
 std::string PipelineParams::validate() const {
@@ -49,6 +62,10 @@ std::string PipelineParams::validate() const {
 Pipeline::Pipeline(const PipelineParams& params)
     : params_(params),
       static_init_(params.vehicle, params.suspension, params.estimator.static_init),
+      load_monitor_(params.estimator.load_change, params.estimator.rls, params.estimator.bayes,
+                    params.estimator.type == RegressorType::kRls, static_init_.no_static_prior(),
+                    params.vehicle.empty_mass_kg,
+                    params.estimator.static_init.standstill_speed_mps),
       longitudinal_(params.vehicle, params.estimator.longitudinal, params.estimator.differencing),
       lateral_(params.vehicle, params.estimator.lateral, params.estimator.differencing),
       supervisor_(params.estimator.supervisor),
@@ -62,13 +79,54 @@ Pipeline::Pipeline(const PipelineParams& params)
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   regressor_->reset(prior);
   supervisor_.on_regressor_reset();
+  longitudinal_.set_reference_mass(prior.mass_kg);
   longitudinal_.reset();
   lateral_.reset();
   has_prior_ = true;
+  has_plausible_ = false;
   prior_reason_ = reason;
   prior_ = prior;
   estimate_.initial_mass_kg = prior.mass_kg;
   estimate_.prior_reason = reason;
+}
+
+void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
+  const bool monitor = !params_.suspension.carries_load();
+  if (monitor) load_monitor_.step(sample);
+  // Extractors run on every tick (their filters need continuity); the supervisor decides.
+  Extraction longitudinal = longitudinal_.step(sample);
+  Extraction lateral = lateral_.step(sample);
+  longitudinal.pair.information = pair_information_;
+  lateral.pair.information = pair_information_;
+  result->events[static_cast<int>(Block::kLongitudinal)] =
+      supervisor_.offer(Block::kLongitudinal, longitudinal, *regressor_, &result->estimate_changed);
+  if (monitor && longitudinal.has_pair()) load_monitor_.offer(longitudinal.pair);
+  // Pairs kept while the driveline lag was unknown, now at the identified lag.
+  Extraction released;
+  while (longitudinal_.pop_released(&released)) {
+    released.pair.information = pair_information_;
+    supervisor_.offer_late(Block::kLongitudinal, released, *regressor_, &result->estimate_changed);
+    if (monitor && released.has_pair()) load_monitor_.offer(released.pair);
+  }
+  result->events[static_cast<int>(Block::kLateral)] =
+      supervisor_.offer(Block::kLateral, lateral, *regressor_, &result->estimate_changed);
+  if (monitor && lateral.has_pair()) load_monitor_.offer(lateral.pair);
+}
+
+void Pipeline::adopt_challenger() {
+  if (params_.estimator.type == RegressorType::kRls) {
+    rls_ = load_monitor_.challenger_rls();
+  } else {
+    bayes_ = load_monitor_.challenger_bayes();
+  }
+  load_monitor_.dismiss();
+  has_plausible_ = false;
+  supervisor_.on_regressor_reset();
+  longitudinal_.set_reference_mass(regressor_->state().mass_kg);
+  prior_ = load_monitor_.start_prior();
+  prior_reason_ = StatusReason::kLoadChanged;
+  estimate_.initial_mass_kg = prior_.mass_kg;
+  estimate_.prior_reason = StatusReason::kLoadChanged;
 }
 
 bool Pipeline::flush() {
@@ -87,14 +145,28 @@ StepResult Pipeline::step(const Sample& sample) {
     reference_deflection_std_m_ = static_mass->deflection_std_m;
     reference_grade_accel_mps2_ = static_mass->grade_accel_mps2;
     // The first standstill after driving on the empty-mass prior does not throw away what the
-    // events taught; a load change always restarts (the old estimate is about another vehicle).
-    const bool events_used = has_prior_ && regressor_->state().pairs_used > 0;
-    if (static_mass->load_changed || !events_used) {
+    // events taught. A load change shifts the belief by the added mass (with the payload
+    // prior's uncertainty) rather than forgetting what the drive taught about the vehicle.
+    const RegressorState state = regressor_->state();
+    const bool events_used = has_prior_ && state.pairs_used > 0;
+    if (static_mass->load_changed && events_used) {
+      MassPrior shifted = static_mass->prior;
+      shifted.mass_kg = state.mass_kg + static_mass->mass_change_kg;
+      shifted.mass_std_kg = std::hypot(state.mass_std_kg, static_mass->mass_change_std_kg);
+      restart(shifted, StatusReason::kLoadChanged);
+      result.reinitialised = true;
+      result.estimate_changed = true;
+    } else if (static_mass->load_changed || !events_used) {
       restart(static_mass->prior, static_mass->load_changed ? StatusReason::kLoadChanged
                                                             : StatusReason::kStaticInitialised);
       result.reinitialised = true;
       result.estimate_changed = true;
     }
+  }
+  if (!has_prior_ && !params_.suspension.carries_load()) {
+    restart(static_init_.no_static_prior(), StatusReason::kNoLoadSensor);
+    result.reinitialised = true;
+    result.estimate_changed = true;
   }
   if (!has_prior_ && sample.has(Input::kSpeed) &&
       std::abs(sample.speed_mps) > params_.estimator.static_init.standstill_speed_mps) {
@@ -103,16 +175,11 @@ StepResult Pipeline::step(const Sample& sample) {
     result.estimate_changed = true;
   }
 
-  if (has_prior_) {
-    // Extractors run on every tick (their filters need continuity); the supervisor decides.
-    Extraction longitudinal = longitudinal_.step(sample);
-    Extraction lateral = lateral_.step(sample);
-    longitudinal.pair.information = pair_information_;
-    lateral.pair.information = pair_information_;
-    result.events[static_cast<int>(Block::kLongitudinal)] = supervisor_.offer(
-        Block::kLongitudinal, longitudinal, *regressor_, &result.estimate_changed);
-    result.events[static_cast<int>(Block::kLateral)] =
-        supervisor_.offer(Block::kLateral, lateral, *regressor_, &result.estimate_changed);
+  if (has_prior_) offer_pairs(sample, &result);
+  if (load_monitor_.contradicts(regressor_->state())) {
+    adopt_challenger();
+    result.reinitialised = true;
+    result.estimate_changed = true;
   }
 
   const EstimateStatus previous_status = estimate_.status;
@@ -210,15 +277,10 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   prior_ = prior;
 
   const RegressorState state = regressor_->state();
-  estimate_.mass_known = true;
+  has_plausible_ = false;
+  publish_state(state);
   estimate_.initial_mass_kg = prior.mass_kg;
   estimate_.prior_reason = StatusReason::kRestored;
-  estimate_.mass_kg = state.mass_kg;
-  estimate_.mu_n = state.mu_n;
-  estimate_.mass_std_kg = state.mass_std_kg;
-  estimate_.ci_low_kg = state.ci_low_kg;
-  estimate_.ci_high_kg = state.ci_high_kg;
-  estimate_.pairs_used = state.pairs_used;
   estimate_.blocks = s.blocks;
   estimate_.status =
       state.pairs_used > 0 ? EstimateStatus::kConverging : EstimateStatus::kStaticOnly;
@@ -231,8 +293,9 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   estimate_.blocks[0] = supervisor_.counters(Block::kLongitudinal);
   estimate_.blocks[1] = supervisor_.counters(Block::kLateral);
 
-  InputMask needed = input_bit(Input::kSpeed) | input_bit(Input::kRearRightDeflection);
-  if (params_.estimator.longitudinal.enabled) needed |= LongitudinalExtractor::kRequired;
+  InputMask needed = input_bit(Input::kSpeed);
+  if (params_.suspension.carries_load()) needed |= input_bit(Input::kRearRightDeflection);
+  if (params_.estimator.longitudinal.enabled) needed |= longitudinal_.required_inputs();
   if (params_.estimator.lateral.enabled) needed |= LateralExtractor::kRequired;
   estimate_.invalid_inputs = needed & ~sample.valid;
   refresh_belief();
@@ -249,28 +312,69 @@ void Pipeline::refresh_belief() {
     return;
   }
   const RegressorState state = regressor_->state();
-  estimate_.mass_known = true;
-  estimate_.mass_kg = state.mass_kg;
-  estimate_.mu_n = state.mu_n;
-  estimate_.mass_std_kg = state.mass_std_kg;
-  estimate_.ci_low_kg = state.ci_low_kg;
-  estimate_.ci_high_kg = state.ci_high_kg;
-  estimate_.pairs_used = state.pairs_used;
+  publish_state(state);
+  const LagEstimator& lag = longitudinal_.lag();
+  estimate_.driveline_lag_s = lag.identified() ? lag.lag_s() : -1.0;
+  if (state.pairs_used > 0) {
+    estimate_.force_noise_std_n = longitudinal_.force_noise_n();
+    estimate_.accel_noise_std_mps2 = longitudinal_.accel_noise_mps2();
+  }
 
   if (estimate_.invalid_inputs != 0) {
     estimate_.status = EstimateStatus::kDegraded;
     estimate_.reason = StatusReason::kInputsInvalid;
   } else if (state.pairs_used == 0) {
-    estimate_.status = prior_reason_ == StatusReason::kNoStaticPrior ? EstimateStatus::kInitialising
-                                                                     : EstimateStatus::kStaticOnly;
+    const bool static_prior = prior_reason_ != StatusReason::kNoStaticPrior &&
+                              prior_reason_ != StatusReason::kNoLoadSensor;
+    estimate_.status = static_prior ? EstimateStatus::kStaticOnly : EstimateStatus::kInitialising;
     estimate_.reason = prior_reason_;
   } else {
+    // Converged: more driving would not narrow it (the regression's part is small).
     const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);
     const bool narrow =
         half_width < params_.estimator.converged_ci_halfwidth_fraction * std::abs(state.mass_kg);
     estimate_.status = narrow ? EstimateStatus::kConverged : EstimateStatus::kConverging;
     estimate_.reason = narrow ? StatusReason::kIntervalNarrow : StatusReason::kRefining;
   }
+}
+
+double Pipeline::model_std_kg(double mass_kg) const {
+  // Declared bounds are of a uniform error (std bound / sqrt(3)); the pitch's is a std already.
+  constexpr double kUniformStdPerBound = 0.5773502691896258;
+  constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+  const VehicleParams& v = params_.vehicle;
+  const double relative =
+      std::sqrt(std::pow(kUniformStdPerBound * v.wheel_torque_accuracy_fraction, 2) +
+                std::pow(kUniformStdPerBound * v.wheel_radius_accuracy_fraction, 2) +
+                std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2));
+  return relative * std::abs(mass_kg);
+}
+
+void Pipeline::publish_state(const RegressorState& state) {
+  const VehicleParams& v = params_.vehicle;
+  estimate_.plausible_low_kg = kPlausibleLowPerEmpty * v.empty_mass_kg;
+  estimate_.plausible_high_kg = std::isfinite(v.max_mass_kg)
+                                    ? kPlausibleHighPerMax * v.max_mass_kg
+                                    : kPlausibleHighPerEmptyWithoutMax * v.empty_mass_kg;
+  estimate_.pairs_used = state.pairs_used;
+  estimate_.mass_known = true;
+  const bool plausible =
+      state.mass_kg >= estimate_.plausible_low_kg && state.mass_kg <= estimate_.plausible_high_kg;
+  estimate_.plausible = plausible;
+  estimate_.implausible_mass_kg = plausible ? 0.0 : state.mass_kg;
+  if (!plausible && has_plausible_) return;  // hold the last plausible estimate
+  has_plausible_ = has_plausible_ || plausible;
+  const double model_std = model_std_kg(state.mass_kg);
+  const double z = state.mass_std_kg > 0.0
+                       ? 0.5 * (state.ci_high_kg - state.ci_low_kg) / state.mass_std_kg
+                       : 1.959963984540054;  // the regression's own quantile (Student t or normal)
+  const double half_width = std::hypot(0.5 * (state.ci_high_kg - state.ci_low_kg), z * model_std);
+  estimate_.mass_kg = state.mass_kg;
+  estimate_.mu_n = state.mu_n;
+  estimate_.mass_model_std_kg = model_std;
+  estimate_.mass_std_kg = std::hypot(state.mass_std_kg, model_std);
+  estimate_.ci_low_kg = state.mass_kg - half_width;
+  estimate_.ci_high_kg = state.mass_kg + half_width;
 }
 
 }  // namespace vmass

@@ -81,7 +81,8 @@ PairPrediction RlsEstimator::predict(const RegressionPair& pair) const {
     out.variance_n2 = std::numeric_limits<double>::infinity();
     return out;
   }
-  const double variance = phi.dot(p_ * phi) + noise_var_n2_ / pair.weight;
+  const double variance =
+      phi.dot(p_ * phi) + noise_var_n2_ / relative_weight(pair, std::sqrt(noise_var_n2_));
   out.variance_n2 = std::isfinite(variance) ? variance : std::numeric_limits<double>::infinity();
   return out;
 }
@@ -90,7 +91,8 @@ bool RlsEstimator::update(const RegressionPair& pair) {
   if (!pair_is_usable(pair)) return false;
   const Eigen::Vector2d phi(pair.delta_accel_mps2, 1.0);
   // Precision of the pair as an observation among correlated neighbours (see RegressionPair).
-  const double r = noise_var_n2_ / (pair.weight * pair.information);
+  const double r =
+      noise_var_n2_ / (relative_weight(pair, std::sqrt(noise_var_n2_)) * pair.information);
   const Eigen::Vector2d p_phi = p_ * phi;
   const double s = phi.dot(p_phi) + r;
   if (!(std::isfinite(s) && s > 0.0)) return false;

@@ -24,6 +24,12 @@ std::string_view input_name(Input in) {
       return "rear_right_deflection";
     case Input::kGear:
       return "gear";
+    case Input::kBrakeSwitch:
+      return "brake_switch";
+    case Input::kEngineTorque:
+      return "engine_torque";
+    case Input::kEngineSpeed:
+      return "engine_speed";
     case Input::kCount:
       break;
   }
@@ -54,6 +60,12 @@ double Sample::value(Input in) const {
       return rear_right_deflection_m;
     case Input::kGear:
       return static_cast<double>(gear);
+    case Input::kBrakeSwitch:
+      return brake_switch ? 1.0 : 0.0;
+    case Input::kEngineTorque:
+      return engine_torque_nm;
+    case Input::kEngineSpeed:
+      return engine_speed_radps;
     case Input::kCount:
       break;
   }
@@ -88,6 +100,15 @@ void Sample::set(Input in, double v) {
       break;
     case Input::kGear:
       gear = static_cast<int>(v);
+      break;
+    case Input::kBrakeSwitch:
+      brake_switch = v > 0.5;
+      break;
+    case Input::kEngineTorque:
+      engine_torque_nm = v;
+      break;
+    case Input::kEngineSpeed:
+      engine_speed_radps = v;
       break;
     case Input::kCount:
       return;

@@ -9,6 +9,7 @@ namespace vmass {
 std::string SupervisorParams::validate() const {
   ParamCheck c("estimator.supervisor");
   c.positive("innovation_gate_sigma", innovation_gate_sigma);
+  c.non_negative("huber_k", huber_k);
   c.at_least("min_pairs_before_gating", min_pairs_before_gating, 0);
   c.at_least("max_consecutive_rejections", max_consecutive_rejections, 1);
   return c.message();
@@ -23,8 +24,13 @@ void Supervisor::on_regressor_reset() {
 
 PairEvent Supervisor::offer(Block block, const Extraction& extraction, MassRegressor& regressor,
                             bool* estimate_changed) {
+  ++counters_[static_cast<int>(block)].ticks;
+  return offer_late(block, extraction, regressor, estimate_changed);
+}
+
+PairEvent Supervisor::offer_late(Block block, const Extraction& extraction,
+                                 MassRegressor& regressor, bool* estimate_changed) {
   BlockCounters& counters = counters_[static_cast<int>(block)];
-  ++counters.ticks;
   PairEvent event;
   event.verdict = extraction.verdict;
   if (!extraction.has_pair()) return event;
@@ -47,7 +53,12 @@ PairEvent Supervisor::offer(Block block, const Extraction& extraction, MassRegre
     return event;
   }
   consecutive_rejections_ = 0;
-  if (regressor.update(extraction.pair)) *estimate_changed = true;
+  RegressionPair pair = extraction.pair;
+  if (gating && params_.huber_k > 0.0 && event.test_ratio > params_.huber_k) {
+    pair.weight *= params_.huber_k / event.test_ratio;
+  }
+  event.pair = pair;
+  if (regressor.update(pair)) *estimate_changed = true;
   ++pairs_since_reset_;
   ++counters.accepted;
   event.verdict = PairVerdict::kAccepted;

@@ -1,6 +1,7 @@
 #include "vmass/core/vehicle_params.hpp"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "vmass/core/param_check.hpp"
@@ -13,6 +14,22 @@ double VehicleParams::rotating_mass_for_gear(int gear, bool gear_valid) const {
     return rotating_mass_by_gear_kg[static_cast<std::size_t>(gear) - 1];
   }
   return rotating_mass_kg;
+}
+
+double VehicleParams::overall_ratio(int gear) const {
+  if (!knows_driveline() || gear < 1 || static_cast<std::size_t>(gear) > gear_ratios.size()) {
+    return 0.0;
+  }
+  return gear_ratios[static_cast<std::size_t>(gear) - 1] * final_drive_ratio;
+}
+
+double VehicleParams::wheel_torque_from_engine_nm(double engine_torque_nm, int gear) const {
+  const double ratio = overall_ratio(gear);
+  if (!(ratio > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  // Losses take from the torque flowing to the wheels, and add to the drag of a dragged engine.
+  const double efficiency =
+      engine_torque_nm >= 0.0 ? driveline_efficiency : 1.0 / driveline_efficiency;
+  return engine_torque_nm * ratio * efficiency;
 }
 
 std::string VehicleParams::validate() const {
@@ -40,6 +57,21 @@ std::string VehicleParams::validate() const {
         std::pair{"wheel_radius_accuracy_fraction", wheel_radius_accuracy_fraction}}) {
     if (!(value >= 0.0 && value < 0.5)) c.fail(key, "must be in [0, 0.5)");
   }
+  if (!(std::abs(pitch_gradient_deg_per_g) < 10.0)) {
+    c.fail("pitch_gradient_deg_per_g", "must be in (-10, 10)");
+  }
+  c.non_negative("pitch_gradient_std_deg_per_g", pitch_gradient_std_deg_per_g);
+  if (!(rotating_mass_accuracy_fraction >= 0.0 && rotating_mass_accuracy_fraction <= 1.0)) {
+    c.fail("rotating_mass_accuracy_fraction", "must be in [0, 1]");
+  }
+  for (std::size_t i = 0; i < gear_ratios.size(); ++i) {
+    c.positive("gear_ratios[" + std::to_string(i) + "]", gear_ratios[i]);
+  }
+  c.non_negative("final_drive_ratio", final_drive_ratio);
+  if (!(driveline_efficiency > 0.5 && driveline_efficiency <= 1.0)) {
+    c.fail("driveline_efficiency", "must be in (0.5, 1]");
+  }
+  c.positive("max_driveline_slip_fraction", max_driveline_slip_fraction);
   return c.message();
 }
 
@@ -53,6 +85,7 @@ double SuspensionParams::wheel_force_n(double deflection_m) const {
 
 std::string SuspensionParams::validate() const {
   ParamCheck c("suspension");
+  if (!carries_load()) return c.message();
   c.positive("stiffness_n_per_m", stiffness_n_per_m);
   c.finite("empty_deflection_m", empty_deflection_m);
   c.non_negative("progressive_rate_n_per_m2", progressive_rate_n_per_m2);

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "vmass/csv/csv.hpp"
+#include "vmass/io/excerpt.hpp"
+#include "vmass/io/regular_file.hpp"
 
 namespace vmass {
 
@@ -28,6 +30,12 @@ std::string samples_csv_column(Input in) {
       return "rear_right_deflection_m";
     case Input::kGear:
       return "gear";
+    case Input::kBrakeSwitch:
+      return "brake_switch";
+    case Input::kEngineTorque:
+      return "engine_torque_nm";
+    case Input::kEngineSpeed:
+      return "engine_speed_radps";
     case Input::kCount:
       break;
   }
@@ -35,14 +43,23 @@ std::string samples_csv_column(Input in) {
 }
 
 SamplesCsvReader::SamplesCsvReader(const std::string& path)
-    : path_(path), in_(path), column_of_input_(kInputCount, -1) {
+    : path_(path), lines_(in_, kMaxLineBytes), column_of_input_(kInputCount, -1) {
+  // A regular file or a pipe; a directory or a device (/dev/zero) is refused before reading.
+  if (const std::string why = io::check_input_file(path, true); !why.empty()) {
+    error_ = path + ": cannot open the samples file: " + why;
+    return;
+  }
+  in_.open(path, std::ios::binary);
   if (!in_) {
     error_ = path + ": cannot open the samples file";
     return;
   }
   std::string header;
-  if (!std::getline(in_, header)) {
-    error_ = path + ":1: empty file, expected a header";
+  if (!lines_.next(&header) || lines_.overlong()) {
+    error_ = path + ":1: " +
+             (!lines_.error().empty() ? "read error: " + lines_.error()
+              : lines_.overlong()     ? std::string("header longer than 64 KiB")
+                                      : std::string("empty file, expected a header"));
     return;
   }
   line_ = 1;
@@ -69,9 +86,12 @@ void SamplesCsvReader::warn(const std::string& message) {
 std::optional<Sample> SamplesCsvReader::next() {
   if (!error_.empty()) return std::nullopt;
   std::string row;
-  while (std::getline(in_, row)) {
+  while (lines_.next(&row)) {
     ++line_;
-    if (!row.empty() && row.back() == '\r') row.pop_back();
+    if (lines_.overlong()) {
+      warn("row longer than 64 KiB");
+      continue;
+    }
     if (row.empty() || row.front() == '#') continue;
     const std::vector<std::string> cells = split_csv_line(row);
     if (cells.size() != column_count_) {
@@ -83,11 +103,21 @@ std::optional<Sample> SamplesCsvReader::next() {
     double time_s = 0.0;
     if (!parse_csv_number(cells[static_cast<std::size_t>(time_column_)], &time_s) ||
         !std::isfinite(time_s)) {
-      warn("time_s is not a number: '" + cells[static_cast<std::size_t>(time_column_)] + "'");
+      warn("time_s is not a number: '" +
+           io::excerpt(cells[static_cast<std::size_t>(time_column_)]) + "'");
+      continue;
+    }
+    if (!(std::abs(time_s) <= kMaxAbsTimeS)) {
+      warn("time_s out of range (|time_s| <= 1e10 s)");
       continue;
     }
     s.time_us = from_seconds(time_s);
-    if (has_last_time_ && s.time_us <= last_time_us_) {
+    // Compared with the previous row, not the previous good one: one row stamped far away
+    // costs that row (and the one after), never the rest of the file.
+    const bool increases = !has_last_time_ || s.time_us > last_time_us_;
+    has_last_time_ = true;
+    last_time_us_ = s.time_us;
+    if (!increases) {
       warn("time_s does not increase");
       continue;
     }
@@ -99,7 +129,8 @@ std::optional<Sample> SamplesCsvReader::next() {
       if (cell.empty()) continue;  // invalid at this tick
       double v = 0.0;
       if (!parse_csv_number(cell, &v)) {
-        warn(samples_csv_column(static_cast<Input>(i)) + " is not a number: '" + cell + "'");
+        warn(samples_csv_column(static_cast<Input>(i)) + " is not a number: '" + io::excerpt(cell) +
+             "'");
         bad = true;
         break;
       }
@@ -107,10 +138,9 @@ std::optional<Sample> SamplesCsvReader::next() {
       if (std::isfinite(v)) s.set(static_cast<Input>(i), v);
     }
     if (bad) continue;
-    has_last_time_ = true;
-    last_time_us_ = s.time_us;
     return s;
   }
+  if (!lines_.error().empty()) read_error_ = path_ + ": read error: " + lines_.error();
   return std::nullopt;
 }
 

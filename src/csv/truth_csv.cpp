@@ -1,10 +1,13 @@
 #include "vmass/csv/truth_csv.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 
 #include "vmass/csv/csv.hpp"
+#include "vmass/io/line_reader.hpp"
+#include "vmass/io/regular_file.hpp"
 
 namespace vmass {
 namespace {
@@ -21,13 +24,15 @@ Truth::Truth(std::vector<TimeUs> times, std::vector<double> masses)
     : times_(std::move(times)), masses_kg_(std::move(masses)) {}
 
 std::optional<Truth> Truth::load(const std::string& path, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    *error = path + ": cannot open the truth file";
+  const io::FileText file = io::read_regular_file(path, io::kMaxTableBytes, "truth file");
+  if (!file.ok()) {
+    *error = file.error;
     return std::nullopt;
   }
+  std::istringstream in(file.text);
+  io::LineReader lines(in);
   std::string line;
-  std::getline(in, line);
+  lines.next(&line);
   const auto header = split_csv_line(line);
   if (header.size() < 2 || header[0] != "time_s" || header[1] != "mass_kg") {
     *error = path + ":1: expected a header starting with time_s,mass_kg";
@@ -35,14 +40,18 @@ std::optional<Truth> Truth::load(const std::string& path, std::string* error) {
   }
   std::vector<TimeUs> times;
   std::vector<double> masses;
-  long number = 1;
-  while (std::getline(in, line)) {
-    ++number;
+  while (lines.next(&line)) {
     if (line.empty()) continue;
     const auto cells = split_csv_line(line);
     double t = 0.0, m = 0.0;
-    if (cells.size() < 2 || !parse_csv_number(cells[0], &t) || !parse_csv_number(cells[1], &m)) {
-      *error = path + ":" + std::to_string(number) + ": expected time_s,mass_kg numbers";
+    const std::string at = path + ":" + std::to_string(lines.line_number()) + ": ";
+    if (cells.size() < 2 || !parse_csv_number(cells[0], &t) || !parse_csv_number(cells[1], &m) ||
+        !(std::abs(t) <= 1e10) || !std::isfinite(m)) {
+      *error = at + "expected time_s,mass_kg numbers (|time_s| <= 1e10 s)";
+      return std::nullopt;
+    }
+    if (!times.empty() && from_seconds(t) < times.back()) {
+      *error = at + "time_s goes back";
       return std::nullopt;
     }
     times.push_back(from_seconds(t));

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "vmass/io/regular_file.hpp"
+
 namespace vmass::runtime {
 
 CandumpFrameSource::CandumpFrameSource(std::unique_ptr<std::istream> in, const std::string& path)
@@ -14,6 +16,12 @@ CandumpFrameSource::CandumpFrameSource(std::unique_ptr<std::istream> in, const s
 
 std::unique_ptr<CandumpFrameSource> CandumpFrameSource::open(const std::string& path,
                                                              std::string* error) {
+  // A regular file or a pipe (candump -l | vmassd --replay /dev/stdin); never a directory or a
+  // device such as /dev/zero.
+  if (const std::string why = io::check_input_file(path, true); !why.empty()) {
+    if (error) *error = path + ": cannot open the log: " + why;
+    return nullptr;
+  }
   auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
   if (!*file) {
     if (error) *error = path + ": cannot open the log: " + std::strerror(errno);

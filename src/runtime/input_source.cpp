@@ -29,6 +29,12 @@ void InputSource::set_health(SourceState state, const std::string& detail) {
   health_.write(h);
 }
 
+void InputSource::publish_clock_counters(const ClockCounters& c) {
+  counters_.reordered.store(c.reordered, std::memory_order_relaxed);
+  counters_.late_dropped.store(c.late_dropped, std::memory_order_relaxed);
+  counters_.time_jumps.store(c.time_jumps, std::memory_order_relaxed);
+}
+
 std::string_view source_state_name(SourceState s) {
   switch (s) {
     case SourceState::kOk:

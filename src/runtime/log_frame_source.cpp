@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "vmass/io/regular_file.hpp"
 #include "vmass/runtime/converted_log_frame_source.hpp"
 #include "vmass/runtime/text_log_frame_source.hpp"
 
@@ -43,10 +44,20 @@ void LogFrameSource::report_corrupt(std::int64_t position, const std::string& wh
 
 std::unique_ptr<LogFrameSource> open_log_frame_source(const std::string& path, std::string* error,
                                                       bool require_time) {
+  // A regular file or a pipe (candump -l | vmassd --replay /dev/stdin); never a directory or a
+  // device such as /dev/zero.
+  if (const std::string why = io::check_input_file(path, true); !why.empty()) {
+    if (error) *error = path + ": cannot open the log: " + why;
+    return nullptr;
+  }
   auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
   if (!*file) {
     if (error) *error = path + ": cannot open the log: " + std::strerror(errno);
     return nullptr;
+  }
+  // A pipe cannot be read ahead and rewound: its format is found from its first line.
+  if (!io::check_input_file(path, false).empty()) {
+    return TextLogFrameSource::from_stream(std::move(file), path, require_time, error);
   }
   std::string head(can::kLogFormatProbeBytes, '\0');
   file->read(head.data(), static_cast<std::streamsize>(head.size()));

@@ -18,20 +18,31 @@ std::unique_ptr<SamplesCsvSource> SamplesCsvSource::open(const std::string& path
 }
 
 InputSource::Read SamplesCsvSource::next_record(int /*timeout_ms*/) {
-  const long skipped_before = reader_.skipped_rows();
-  std::optional<Sample> row = reader_.next();
-  const long skipped = reader_.skipped_rows() - skipped_before;
-  if (skipped > 0) {
-    counters_.received.fetch_add(skipped, std::memory_order_relaxed);
-    counters_.malformed.fetch_add(skipped, std::memory_order_relaxed);
+  for (;;) {
+    if (guard_.pop(&record_, ended_)) {
+      publish_clock_counters(guard_.counters());
+      return Read::kRecord;
+    }
+    if (ended_) {
+      publish_clock_counters(guard_.counters());
+      set_health(SourceState::kEnded,
+                 reader_.read_error().empty() ? "end of " + path_ : reader_.read_error());
+      return Read::kEnd;
+    }
+    const long skipped_before = reader_.skipped_rows();
+    std::optional<Sample> row = reader_.next();
+    const long skipped = reader_.skipped_rows() - skipped_before;
+    if (skipped > 0) {
+      counters_.received.fetch_add(skipped, std::memory_order_relaxed);
+      counters_.malformed.fetch_add(skipped, std::memory_order_relaxed);
+    }
+    if (!row) {
+      ended_ = true;
+      continue;
+    }
+    counters_.received.fetch_add(1, std::memory_order_relaxed);
+    guard_.push(*row);
   }
-  if (!row) {
-    set_health(SourceState::kEnded, "end of " + path_);
-    return Read::kEnd;
-  }
-  record_ = *row;
-  counters_.received.fetch_add(1, std::memory_order_relaxed);
-  return Read::kRecord;
 }
 
 void SamplesCsvSource::copy_record(InputRecord* record) const {

@@ -5,17 +5,26 @@ namespace vmass::runtime {
 TextLogFrameSource::TextLogFrameSource(std::unique_ptr<std::istream> in, const std::string& path,
                                        can::LogFormat format,
                                        std::unique_ptr<can::LogLineParser> parser)
-    : LogFrameSource(path, format), in_(std::move(in)), parser_(std::move(parser)) {}
+    : LogFrameSource(path, format),
+      in_(std::move(in)),
+      lines_(*in_, can::CandumpReader::kMaxLineBytes),
+      parser_(std::move(parser)) {}
+
+void TextLogFrameSource::set_read_error(const std::string& why) {
+  if (problem().empty()) set_problem(path() + ": read error: " + why);
+}
 
 std::unique_ptr<TextLogFrameSource> TextLogFrameSource::from_stream(
     std::unique_ptr<std::istream> in, const std::string& name, bool require_time,
     std::string* error) {
   std::string first;
   std::int64_t blank_lines = 0;
-  while (std::getline(*in, first) && first.find_first_not_of(" \t\r") == std::string::npos) {
+  io::LineReader lines(*in, can::CandumpReader::kMaxLineBytes);
+  while (lines.next(&first) && first.find_first_not_of(" \t\r") == std::string::npos) {
     first.clear();  // blank lines tell nothing
     ++blank_lines;
   }
+  const bool first_overlong = lines.overlong();
   const can::LogFormat format =
       first.empty() ? can::LogFormat::kCandump : can::detect_log_format(first + "\n");
   std::unique_ptr<can::LogLineParser> parser = can::make_log_line_parser(format, require_time);
@@ -27,6 +36,8 @@ std::unique_ptr<TextLogFrameSource> TextLogFrameSource::from_stream(
       std::make_unique<TextLogFrameSource>(std::move(in), name, format, std::move(parser));
   source->line_ = std::move(first);
   source->have_line_ = !source->line_.empty();
+  source->overlong_ = first_overlong;
+  if (!lines.error().empty()) source->set_read_error(lines.error());
   source->line_no_ = blank_lines;
   source->mutable_stats().lines = static_cast<std::uint64_t>(blank_lines);
   source->mutable_stats().comments = static_cast<std::uint64_t>(blank_lines);
@@ -38,7 +49,11 @@ bool TextLogFrameSource::next_line() {
     have_line_ = false;
     return true;
   }
-  return static_cast<bool>(std::getline(*in_, line_));
+  if (!problem().empty()) return false;  // a read error ended the log
+  const bool got = lines_.next(&line_);
+  overlong_ = lines_.overlong();
+  if (!got && !lines_.error().empty()) set_read_error(lines_.error());
+  return got;
 }
 
 FrameSource::Read TextLogFrameSource::read(can::CanFrame* frame, int /*timeout_ms*/) {
@@ -46,6 +61,11 @@ FrameSource::Read TextLogFrameSource::read(can::CanFrame* frame, int /*timeout_m
   while (next_line()) {
     ++line_no_;
     ++mutable_stats().lines;
+    if (overlong_) {
+      report_corrupt(line_no_, "line longer than " +
+                                   std::to_string(can::CandumpReader::kMaxLineBytes) + " bytes");
+      continue;
+    }
     switch (parser_->parse(line_, &record, &why_)) {
       case can::CandumpLine::kFrame:
         interface_.assign(record.interface.data(), record.interface.size());

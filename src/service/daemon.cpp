@@ -18,6 +18,7 @@
 #include "daemon_clock.hpp"
 #include "daemon_threads.hpp"
 #include "vmass/config/config.hpp"
+#include "vmass/io/excerpt.hpp"
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/candump_frame_source.hpp"
 #include "vmass/runtime/log_frame_source.hpp"
@@ -25,7 +26,9 @@
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/service/state_plausibility.hpp"
 #include "vmass/service/state_store.hpp"
+#include "vmass/service/stop_signals.hpp"
 #include "vmass/service/systemd_notifier.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/version.hpp"
@@ -41,19 +44,8 @@ using daemon::StatusContext;
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
-
-/// SIGTERM, SIGINT and SIGHUP, taken by the main thread with sigtimedwait. Blocked first, so
-/// that every thread started later (ours, and any a library starts) inherits the mask.
-sigset_t block_signals() {
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGTERM);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGHUP);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-  ::signal(SIGPIPE, SIG_IGN);
-  return signals;
-}
+constexpr double kMinSpeed = 0.001;  ///< --speed bounds
+constexpr double kMaxSpeed = 1000.0;
 
 /// The run's fixed parameters from the options and the config. nullopt (logged) on an error.
 std::optional<Plan> make_plan(const DaemonOptions& options, const ServiceSettings& settings,
@@ -71,9 +63,11 @@ std::optional<Plan> make_plan(const DaemonOptions& options, const ServiceSetting
   } else {
     char* end = nullptr;
     plan.speed = std::strtod(options.speed.c_str(), &end);
-    if (end == options.speed.c_str() || *end != '\0' || !(plan.speed > 0.0) ||
-        !(plan.speed <= 1000.0)) {
-      spdlog::error("--speed: expected a factor in (0, 1000] or 'max', got '{}'", options.speed);
+    // Bounded below too: at 1e-300 a tick would come once in 1e290 years.
+    if (end == options.speed.c_str() || *end != '\0' || !(plan.speed >= kMinSpeed) ||
+        !(plan.speed <= kMaxSpeed)) {
+      spdlog::error("--speed: expected a factor in [0.001, 1000] or 'max', got '{}'",
+                    io::excerpt(options.speed));
       return std::nullopt;
     }
   }
@@ -191,6 +185,11 @@ bool restore_state(const std::string& path, std::uint64_t fingerprint, Pipeline&
   const StateLoad state = load_state_file(path, fingerprint);
   if (state.status == StateLoadStatus::kRejected) spdlog::warn("{}; starting fresh", state.error);
   if (state.status != StateLoadStatus::kLoaded) return false;
+  const std::string implausible = implausible_state(state.state.snapshot, pipeline.params());
+  if (!implausible.empty()) {
+    spdlog::warn("{}: saved state not believable ({}); starting fresh", path, implausible);
+    return false;
+  }
   if (!pipeline.restore(state.state.snapshot)) {
     spdlog::warn("{}: saved state refused by the estimator; starting fresh", path);
     return false;
@@ -225,6 +224,7 @@ int run_main_loop(const MainLoop& m) {
     siginfo_t info{};
     const int sig = sigtimedwait(&m.signals, &info, &poll);
     if (sig == SIGTERM || sig == SIGINT) return sig;
+    if (const int taken = stop_requested(); taken != 0) return taken;
     if (sig == SIGHUP) spdlog::info("SIGHUP ignored: restart the service to reload the config");
     if (m.shared.estimator_done.load(std::memory_order_acquire)) return 0;
     const std::int64_t now = mono_ns();
@@ -312,12 +312,30 @@ void log_start(const StatusContext& ctx, const Plan& plan, const DaemonOptions& 
 void log_stop(const DaemonStatus& final_status, bool saved, const LcmPublisher& publisher,
               const Shared& shared) {
   spdlog::info(
-      "stopped: {}{}; {} estimates published, {} queue drops, {} input records late, jitter "
-      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us",
+      "stopped: {}{}; {} estimates published, {} publish failures, {} queue drops, {} input "
+      "records late, jitter p50/p99/max {:.0f}/{:.0f}/{:.0f} us; input clock: {} reordered, {} "
+      "too late, {} jumps",
       daemon::summary_line(final_status), saved ? ", state saved" : "",
-      publisher.estimates_published(), final_status.publish_queue_drops, shared.late_records.load(),
+      publisher.estimates_published(), final_status.publish_failures,
+      final_status.publish_queue_drops, shared.late_records.load(),
       final_status.timing.jitter_p50_us, final_status.timing.jitter_p99_us,
-      final_status.timing.jitter_max_us);
+      final_status.timing.jitter_max_us, final_status.frames_reordered,
+      final_status.frames_late_dropped, final_status.time_jumps);
+}
+
+/// 0 after a good run; 1 when it failed: the recording could not be read to its end, or every
+/// LCM publish failed (a daemon that published nothing did not do its job).
+int exit_code_of(const runtime::InputSource& source, const Shared& shared) {
+  if (const std::string failed = source.read_error(); !failed.empty()) {
+    spdlog::error("{}", failed);
+    return kExitFailure;
+  }
+  const std::int64_t failures = shared.publish_failures.load();
+  if (shared.published.load() == 0 && failures > 0) {
+    spdlog::error("nothing was published on LCM: all {} messages failed", failures);
+    return kExitFailure;
+  }
+  return kExitOk;
 }
 
 /// Everything a run needs once the configuration is read and the input is open.
@@ -367,16 +385,15 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
   join_threads(threads, shared);
   const bool saved = save_final_state(r.source, step, shared, state_file, fingerprint);
   const DaemonStatus final_status = daemon::gather_status(ctx, shared, true);
-  publisher.publish_status(final_status);
+  if (publisher.publish_status(final_status)) shared.published.fetch_add(1);
   log_stop(final_status, saved, publisher, shared);
-  return kExitOk;
+  return exit_code_of(r.source, shared);
 }
 
 }  // namespace
 
 int run_daemon(const DaemonOptions& options) {
   const std::int64_t start_mono = mono_ns();
-  const sigset_t signals = block_signals();
   spdlog::info("vmassd {} starting: config {}", kVersion, options.config_path);
   ConfigLoad loaded = load_config(options.config_path);
   if (!loaded.ok()) {
@@ -395,6 +412,9 @@ int run_daemon(const DaemonOptions& options) {
   lock_memory(settings);
   OpenedInput input = open_input(options, *loaded.config, settings, *plan);
   if (!input.source) return input.exit_code;
+  // From here the main loop takes the stop signals (install_stop_signals() ended the process
+  // on one until now); blocked before LCM and our threads start, so that they inherit the mask.
+  const sigset_t signals = block_stop_signals();
   lcm::LCM lcm(settings.lcm.url);
   if (!lcm.good()) {
     spdlog::error("cannot open LCM at '{}'", settings.lcm.url);

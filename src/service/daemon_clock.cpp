@@ -52,9 +52,4 @@ ClockPair read_clocks() {
   return best;
 }
 
-/// A live frame's time in the tick clock: its kernel stamp (CLOCK_REALTIME) moved by the tick
-/// clock's offset from CLOCK_REALTIME now. A stamp older than 1 s or in the future means the
-/// wall clock was stepped (or the frame has no stamp): then the time it was read. So the
-/// inputs' ages and timeouts never depend on CLOCK_REALTIME steps, which are common on a
-
 }  // namespace vmass::service::daemon

@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "daemon_clock.hpp"
+#include "publish_backoff.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/service/state_store.hpp"
 
@@ -59,18 +60,18 @@ void push_input(const runtime::InputRecord& record, Shared& shared, bool block) 
   }
 }
 
-/// CLOCK_REALTIME and CLOCK_MONOTONIC read together: the pair of the tightest of up to three
-
 /// A live frame's time in the tick clock: its kernel stamp (CLOCK_REALTIME) moved by the tick
 /// clock's offset from CLOCK_REALTIME now. A stamp older than 1 s or in the future means the
 /// wall clock was stepped (or the frame has no stamp): then the time it was read. So the
 /// inputs' ages and timeouts never depend on CLOCK_REALTIME steps, which are common on a
-/// vehicle PC that sets its clock after boot (GNSS, NTP).
-TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan) {
+/// vehicle PC that sets its clock after boot (GNSS, NTP). Such a stamp is counted as a time jump.
+TimeUs live_time_us(TimeUs kernel_stamp_us, const Plan& plan, Shared& shared) {
   const ClockPair now = read_clocks();
   const TimeUs tick_clock_us = plan.t0_us + (now.mono_ns - plan.mono0_ns) / 1000;
   const TimeUs waited = now.realtime_us - kernel_stamp_us;
-  return (waited >= 0 && waited <= 1'000'000) ? tick_clock_us - waited : tick_clock_us;
+  if (waited >= 0 && waited <= 1'000'000) return tick_clock_us - waited;
+  shared.live_clock_steps.fetch_add(1, std::memory_order_relaxed);  // a time jump, bounded
+  return tick_clock_us;
 }
 
 /// A recording: the first record is already fetched (its time is T_0); records are pushed when
@@ -99,7 +100,7 @@ void receive_live(runtime::InputSource& source, Shared& shared, const Plan& plan
     switch (source.next_record(100)) {
       case runtime::InputSource::Read::kRecord:
         source.copy_record(&record);
-        record.time_us = live_time_us(record.time_us, plan);
+        record.time_us = live_time_us(record.time_us, plan, shared);
         push_input(record, shared, false);
         break;
       case runtime::InputSource::Read::kTimeout:
@@ -138,8 +139,16 @@ void publish_record(const runtime::TickRecord& record, Shared& shared, bool bloc
   sem_post(&shared.queue_sem);
 }
 
-void after_tick(const runtime::TickRecord& record, runtime::TickStep& step, Shared& shared,
-                const Plan& plan, TickStats& stats, std::int64_t k) {
+/// The source's input health for the status (allocates nothing; about 4 KB copied).
+void publish_health(const runtime::InputSource& source, Shared& shared) {
+  runtime::InputHealthRecord health;
+  source.health_record(&health);
+  shared.health.write(health);
+}
+
+void after_tick(const runtime::TickRecord& record, runtime::TickStep& step,
+                const runtime::InputSource& source, Shared& shared, const Plan& plan,
+                TickStats& stats, std::int64_t k) {
   publish_record(record, shared, plan.recorded);
   shared.latest.write(record);
   shared.heartbeat.store(k + 1, std::memory_order_release);
@@ -148,6 +157,9 @@ void after_tick(const runtime::TickRecord& record, runtime::TickStep& step, Shar
   }
   if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz)) == 0) {
     shared.timing.write(stats.summary());
+  }
+  if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz / 10.0)) == 0) {
+    publish_health(source, shared);  // 10 times a second: the status is read once a second
   }
 }
 
@@ -162,7 +174,7 @@ std::int64_t run_log_time(runtime::InputSource& source, runtime::TickStep& step,
     stats.on_unpaced_tick();
     const runtime::TickRecord& record = step.tick(k, t, source);
     stats.on_done(mono_ns() - start, false);
-    after_tick(record, step, shared, plan, stats, k);
+    after_tick(record, step, source, shared, plan, stats, k);
   });
   if (!run.any_record) spdlog::warn("{}: no records", source.describe());
   shared.input_ended.store(true, std::memory_order_release);
@@ -256,7 +268,7 @@ std::int64_t run_paced(runtime::InputSource& source, runtime::TickStep& step, Sh
     ++k;
     const std::int64_t next_deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
     stats.on_done(done - wake, done > next_deadline);
-    after_tick(record, step, shared, plan, stats, k - 1);
+    after_tick(record, step, source, shared, plan, stats, k - 1);
     // A live bus after a long stall (suspend, debugger): give the missed ticks up, counted,
     // after 1 s. A recording never skips: a replay the machine cannot keep up with runs late
     // (overruns counted) and still gives the offline estimates.
@@ -289,12 +301,34 @@ void estimator_thread(runtime::InputSource& source, runtime::TickStep& step, Sha
                                             : run_paced(source, step, shared, plan, stats);
   // Final state for the main thread (status, persistence).
   shared.timing.write(stats.summary());
+  publish_health(source, shared);
   shared.snapshot.write(
       SnapshotSlot{step.pipeline().snapshot(), step.last().estimate.time_us, ticks > 0});
   shared.estimator_done.store(plan.recorded && shared.input_ended.load());
 }
 
 // --------------------------------------------------------------------------- status and publisher
+
+void copy_input_health(const runtime::InputSource& source, const runtime::InputHealthRecord& h,
+                       DaemonStatus* s) {
+  for (int i = 0; i < kInputCount; ++i) {
+    const runtime::InputHealthRecord::InputEntry& e = h.inputs[static_cast<std::size_t>(i)];
+    InputHealth& out = s->inputs[static_cast<std::size_t>(i)];
+    out.stale = e.stale;
+    out.invalid = e.invalid;
+    out.implausible = e.implausible;
+    out.counter_fail = e.counter_fail;
+    out.checksum_fail = e.checksum_fail;
+    out.reason = signals::describe(e.verdict, source.message_name(e.verdict.message));
+  }
+  s->messages.clear();
+  for (int k = 0; k < h.message_count; ++k) {
+    const runtime::InputHealthRecord::MessageEntry& m = h.messages[static_cast<std::size_t>(k)];
+    s->messages.push_back(MessageHealth{source.message_name(m.message), m.valid, m.counter_fail,
+                                        m.checksum_fail, m.too_fast, m.too_long});
+  }
+  s->bus_valid = h.bus_valid;
+}
 
 DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stopping) {
   DaemonStatus s;
@@ -308,8 +342,15 @@ DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stoppi
   s.timing = shared.timing.read();
   s.timing.ticks = shared.heartbeat.load(std::memory_order_acquire);  // fresher than the summary
   s.publish_queue_drops = shared.queue_drops.load(std::memory_order_relaxed);
+  s.publish_failures = shared.publish_failures.load(std::memory_order_relaxed);
+  const runtime::SourceCounters& c = ctx.source->counters();
+  s.frames_reordered = c.reordered.load(std::memory_order_relaxed);
+  s.frames_late_dropped = c.late_dropped.load(std::memory_order_relaxed);
+  s.time_jumps = c.time_jumps.load(std::memory_order_relaxed) +
+                 shared.live_clock_steps.load(std::memory_order_relaxed);
   s.state_saves = shared.state_saves.load(std::memory_order_relaxed);
   s.state_restored = ctx.state_restored;
+  copy_input_health(*ctx.source, shared.health.read(), &s);
   const runtime::SourceHealth health = ctx.source->health();
   s.detail = health.detail;
   if (stopping) {
@@ -329,20 +370,31 @@ void publisher_thread(LcmPublisher& publisher, Shared& shared, const StatusConte
                       double status_period_s) {
   const auto period_ns = static_cast<std::int64_t>(status_period_s * 1e9);
   std::int64_t next_status = mono_ns() + period_ns;
+  PublishBackoff backoff(publisher.url());
+  // One message (a tick's estimate and pairs, or the status), unless backing off.
+  auto send = [&](auto&& publish) {
+    const std::int64_t now = mono_ns();
+    if (backoff.try_now(now)) backoff.record(publish(), now);
+    shared.publish_failures.store(backoff.failures(), std::memory_order_relaxed);
+    shared.published.store(backoff.published(), std::memory_order_relaxed);
+  };
   runtime::TickRecord record;
+  auto drain = [&] {
+    while (shared.queue.pop(&record)) send([&] { return publisher.on_tick(record); });
+  };
   for (;;) {
     const std::int64_t wait_until = std::min(next_status, mono_ns() + kPollNs);
     const timespec ts = to_timespec(wait_until);
     sem_clockwait(&shared.queue_sem, CLOCK_MONOTONIC, &ts);
-    while (shared.queue.pop(&record)) publisher.on_tick(record);
+    drain();
     const std::int64_t now = mono_ns();
     if (now >= next_status) {
-      publisher.publish_status(gather_status(ctx, shared, false));
+      send([&] { return publisher.publish_status(gather_status(ctx, shared, false)); });
       next_status += period_ns;
       if (next_status <= now) next_status = now + period_ns;
     }
     if (shared.stop_publisher.load(std::memory_order_acquire)) {
-      while (shared.queue.pop(&record)) publisher.on_tick(record);
+      drain();
       return;
     }
   }

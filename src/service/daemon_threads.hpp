@@ -49,10 +49,14 @@ struct Shared {
   SpscQueue<runtime::TickRecord> queue;      ///< estimator -> publisher
   sem_t queue_sem;
   std::atomic<std::int64_t> queue_drops{0};
-  runtime::SeqLock<runtime::TickRecord> latest;  ///< estimator -> main, publisher (status)
-  runtime::SeqLock<TickTimingSummary> timing;    ///< estimator -> status
-  runtime::SeqLock<SnapshotSlot> snapshot;       ///< estimator -> main (persistence)
-  std::atomic<std::int64_t> heartbeat{0};        ///< ticks run (watchdog evidence)
+  std::atomic<std::int64_t> publish_failures{0};        ///< publisher: messages not published
+  std::atomic<std::int64_t> published{0};               ///< publisher: messages published
+  std::atomic<std::int64_t> live_clock_steps{0};        ///< receive: live stamps off the tick clock
+  runtime::SeqLock<runtime::TickRecord> latest;         ///< estimator -> main, publisher (status)
+  runtime::SeqLock<TickTimingSummary> timing;           ///< estimator -> status
+  runtime::SeqLock<SnapshotSlot> snapshot;              ///< estimator -> main (persistence)
+  runtime::SeqLock<runtime::InputHealthRecord> health;  ///< estimator -> status
+  std::atomic<std::int64_t> heartbeat{0};               ///< ticks run (watchdog evidence)
   std::atomic<std::int64_t> state_saves{0};
   std::atomic<bool> input_ended{false};
   std::atomic<std::int64_t> late_records{0};  ///< applied after the tick they belonged to
@@ -101,6 +105,9 @@ void estimator_thread(runtime::InputSource& source, runtime::TickStep& step, Sha
 void publisher_thread(LcmPublisher& publisher, Shared& shared, const StatusContext& ctx,
                       double status_period_s);
 
+/// The record's counts, reasons (as text), messages and bus validity into *s.
+void copy_input_health(const runtime::InputSource& source, const runtime::InputHealthRecord& h,
+                       DaemonStatus* s);
 DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stopping);
 /// One line for systemd's STATUS= and the log.
 std::string summary_line(const DaemonStatus& s);

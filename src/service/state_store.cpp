@@ -8,10 +8,11 @@
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
+
+#include "vmass/io/regular_file.hpp"
 
 namespace vmass::service {
 namespace {
@@ -113,6 +114,7 @@ std::uint64_t state_fingerprint(const PipelineParams& p) {
   const VehicleParams& v = p.vehicle;
   const SuspensionParams& s = p.suspension;
   std::string text = std::string(regressor_type_name(p.estimator.type));
+  put(&text, "x", s.carries_load() ? 1.0 : 0.0);
   for (double x : {v.empty_mass_kg, v.wheelbase_m, v.cg_to_front_axle_m, v.gravity_mps2,
                    s.stiffness_n_per_m, s.empty_deflection_m, s.progressive_knee_m,
                    s.progressive_rate_n_per_m2, s.linear_range_kg, s.calibrated_range_kg}) {
@@ -295,7 +297,12 @@ bool save_state_file(const std::string& path, const SavedState& state, std::stri
     if (error) *error = message;
     return false;
   };
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // Whatever was left at <path>.tmp (a torn write, a FIFO, a symlink) is removed first, and
+  // O_EXCL | O_NOFOLLOW create a fresh regular file: the write can neither block nor be
+  // redirected.
+  ::unlink(tmp.c_str());
+  const int fd =
+      ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, 0644);
   if (fd < 0) return fail(errno_text("cannot create", tmp));
   std::size_t written = 0;
   while (written < text.size()) {
@@ -339,20 +346,15 @@ bool save_state_file(const std::string& path, const SavedState& state, std::stri
 
 StateLoad load_state_file(const std::string& path, std::uint64_t expected_fingerprint) {
   StateLoad out;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (::access(path.c_str(), F_OK) != 0) {
-      out.status = StateLoadStatus::kMissing;
-    } else {
-      out.status = StateLoadStatus::kRejected;
-      out.error = path + ": cannot read";
-    }
+  // A regular file only, opened without blocking: a FIFO or device at the path is refused.
+  const io::FileText text = io::read_regular_file(path, io::kMaxStateBytes, "state file");
+  if (!text.ok()) {
+    out.status = text.missing ? StateLoadStatus::kMissing : StateLoadStatus::kRejected;
+    out.error = text.error;
     return out;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   std::string error;
-  if (!parse_state(text.str(), &out.state, &error)) {
+  if (!parse_state(text.text, &out.state, &error)) {
     out.status = StateLoadStatus::kRejected;
     out.error = path + ": " + error;
     return out;

@@ -6,12 +6,20 @@
 
 #include "vmass/can/dbc.hpp"
 #include "vmass/config/yaml_reader.hpp"
+#include "vmass/io/excerpt.hpp"
 #include "vmass/signals/units.hpp"
 
 namespace vmass::signals {
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s) { return "'" + io::excerpt(s) + "'"; }
+
+/// Messages of the DBC named `name` (a DBC from many hands may name two alike).
+int count_named(const can::Database& db, const std::string& name) {
+  int n = 0;
+  for (const can::Message& m : db.messages) n += m.name == name;
+  return n;
+}
 
 std::string input_names() {
   std::string s;
@@ -147,6 +155,11 @@ MappedSignal parse_term(YamlReader& t, const TermContext& ctx) {
            "no message " + quoted(out.message) + " in " + ctx.dbc_name +
                case_hint(db.messages, out.message, [](const can::Message& x) { return x.name; }));
   }
+  if (count_named(db, out.message) > 1) {
+    t.fail("message", quoted(out.message) + " names " +
+                          std::to_string(count_named(db, out.message)) + " messages in " +
+                          ctx.dbc_name + ": rename them in the DBC");
+  }
   const can::Message& msg = db.messages[static_cast<std::size_t>(m)];
   const int s = msg.find_signal(out.signal);
   if (s < 0) {
@@ -157,6 +170,10 @@ MappedSignal parse_term(YamlReader& t, const TermContext& ctx) {
   const can::Signal& sig = msg.signals[static_cast<std::size_t>(s)];
   out.ref = can::SignalRef{m, s};
   const std::string what = out.message + "." + out.signal;
+  if (sig.factor == 0.0) {
+    t.fail("signal", what + " has factor 0 in " + ctx.dbc_name +
+                         ": its value is always its offset; fix the DBC");
+  }
   read_mux(t, msg, sig, m, what, &out);
   read_units(t, sig, ctx.input, what, &out);
   out.has_range = sig.has_range;
@@ -283,6 +300,10 @@ CanInputsLoad load_can_inputs(const Config& config) {
     std::string dbc;
     r.require("dbc", &dbc);
     const YAML::Node inputs = r.raw("inputs");
+    const YAML::Node e2e = r.raw("e2e");
+    const YAML::Node plausibility = r.raw("plausibility");
+    bool enforce_dbc_ranges = false;
+    r.read("enforce_dbc_ranges", &enforce_dbc_ranges);
     r.reject_unknown_keys();
 
     CanInputs result;
@@ -301,11 +322,17 @@ CanInputsLoad load_can_inputs(const Config& config) {
     std::optional<can::Decoder> decoder = can::Decoder::compile(std::move(parsed.database), &error);
     if (!decoder) r.fail("dbc", result.dbc_path + ": " + error);
     result.decoder = std::make_shared<const can::Decoder>(std::move(*decoder));
-    error = parse_signal_mapping(inputs, config.file, *result.decoder, dbc, &result.mapping);
+    SignalMapping& mapping = result.mapping;
+    error = parse_signal_mapping(inputs, config.file, *result.decoder, dbc, &mapping);
+    if (error.empty()) {
+      error = parse_message_protection(e2e, config.file, *result.decoder, dbc, &mapping.protection);
+    }
+    if (error.empty()) error = parse_plausibility(plausibility, config.file, &mapping.plausibility);
     if (!error.empty()) {
       out.error = error;
       return out;
     }
+    mapping.enforce_dbc_ranges = enforce_dbc_ranges;
     out.inputs = std::move(result);
   } catch (const ConfigError& e) {
     out.error = e.what();

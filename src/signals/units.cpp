@@ -176,7 +176,12 @@ Dimension input_dimension(Input input) {
       return Dimension::kAngle;
     case Input::kRearRightDeflection:
       return Dimension::kLength;
+    case Input::kEngineTorque:
+      return Dimension::kTorque;
+    case Input::kEngineSpeed:
+      return Dimension::kAngularVelocity;
     case Input::kGear:
+    case Input::kBrakeSwitch:
     case Input::kCount:
       break;
   }

@@ -16,6 +16,7 @@ namespace vmass::sim {
 namespace {
 
 constexpr double kDisplayMinSpeedMps = 0.3;
+constexpr double kBrakeLightPressurePa = 2.0e4;  // about the pedal free travel
 
 // One run of simulate(): the models, their states and the stepping (see simulator.hpp).
 class SimulationRun {
@@ -170,6 +171,8 @@ EcuSignals SimulationRun::ecu_signals(TimeUs t_us, const VehicleOutputs& o) {
   e.gear = pt_.gear_signal();
   e.brake_pressure_pa = cmd_.brake_pressure_pa +
                         (fx_.has(Effect::kBrakeSensor) ? vp_.brakes.pressure_offset_pa : 0.0);
+  // The switch sits on the pedal: it sees the driver's pressure, not the sensor's offset.
+  e.brake_light = cmd_.brake_pressure_pa > kBrakeLightPressurePa;
   ImuInput imu;
   imu.specific_force_x_mps2 = o.specific_force_x_mps2;
   imu.specific_force_y_mps2 = o.specific_force_y_mps2;

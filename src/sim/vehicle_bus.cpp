@@ -68,7 +68,7 @@ double si_value(Source src, const EcuSignals& e, double odometer_m) {
     case Source::kBrakePressure:
       return e.brake_pressure_pa;
     case Source::kBrakeSwitch:
-      return e.brake_pressure_pa > 2.0e4 ? 1.0 : 0.0;
+      return e.brake_light ? 1.0 : 0.0;
     case Source::kSteering:
       return e.steering_wheel_angle_rad;
     case Source::kLevelRearRight:

@@ -240,7 +240,12 @@ TEST(SuspensionFit, MassCheckMatchesEquationThreeAndTheProgressiveCurveStaysWith
 
   // With the written curve, the static initialisation trusts loads up to the calibrated range
   // (800 kg) and flags heavier ones as uncertain (wider prior).
-  const StaticInitializer init(v, r.calibration->suspension_params(), StaticInitParams{});
+  // The ballast sits at the centre of gravity: eq. (3) reads it as it is.
+  StaticInitParams at_cg;
+  at_cg.payload_x_min_fraction = v.cg_to_front_axle_m / v.wheelbase_m;
+  at_cg.payload_x_max_fraction = at_cg.payload_x_min_fraction;
+  at_cg.payload_y_max_fraction = 0.0;
+  const StaticInitializer init(v, r.calibration->suspension_params(), at_cg);
   const double z_800 = testing::deflection_for_force(true_progressive(), g.wheel_force_n(790.0));
   const double z_900 = testing::deflection_for_force(true_progressive(), g.wheel_force_n(900.0));
   EXPECT_FALSE(init.static_mass_for(z_800, 0.0).beyond_calibrated_range);

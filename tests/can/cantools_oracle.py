@@ -218,7 +218,10 @@ def main():
                                  capture_output=True, text=True, check=False)
         finally:
             os.unlink(log_path)
-        if out.returncode != 0:
+        # A DBC with errors (FORD's signals beyond their payload) is decoded with what loaded,
+        # and decode exits 2 for it; any other failure is one.
+        partial = out.returncode == 2 and "decoding with what could be loaded" in out.stderr
+        if out.returncode != 0 and not partial:
             failures.append("%s: vmass-can decode exited %d: %s" % (name, out.returncode,
                                                                    out.stderr[-500:]))
             continue

@@ -73,7 +73,7 @@ TEST(Config, BadEstimatorTypeAndBadYaml) {
   EXPECT_EQ(y.error.rfind("broken.yaml:", 0), 0u) << y.error;
   const ConfigLoad f = load_config("/nonexistent/vmass.yaml");
   ASSERT_FALSE(f.ok());
-  EXPECT_EQ(f.error, "/nonexistent/vmass.yaml: cannot open the config file");
+  EXPECT_EQ(f.error, "/nonexistent/vmass.yaml: cannot open the config: No such file or directory");
 }
 
 TEST(Config, DifferencingStepMustBeWholeTicks) {
@@ -89,6 +89,60 @@ TEST(Config, RawSectionsAreKeptForTheirLayers) {
   ASSERT_TRUE(c.ok()) << c.error;
   EXPECT_EQ(c.config->lcm["url"].as<std::string>(), "memq://");
   EXPECT_EQ(c.config->can["dbc"].as<std::string>(), "car.dbc");
+}
+
+}  // namespace
+}  // namespace vmass
+
+namespace vmass {
+namespace {
+
+// Files from many hands (issue 11): what was accepted silently is refused with file:line:key.
+TEST(ConfigManyHands, DuplicateKeysAreRefusedNotFirstWins) {
+  const ConfigLoad top = load_config_text(std::string(kMinimal) + "vehicle:\n  x: 1\n", "d.yaml");
+  EXPECT_EQ(top.error, "d.yaml:12: vehicle: duplicate key (first at line 1)");
+  std::string text = kMinimal;
+  text.insert(text.find("  wheelbase_m"), "  empty_mass_kg: 900\n");
+  const ConfigLoad nested = load_config_text(text, "n.yaml");
+  EXPECT_EQ(nested.error, "n.yaml:3: vehicle.empty_mass_kg: duplicate key (first at line 2)");
+}
+
+TEST(ConfigManyHands, NumbersBeyondTheirUnitAreRefused) {
+  std::string text = kMinimal;
+  text.replace(text.find("1500"), 4, "1e300");
+  EXPECT_EQ(load_config_text(text, "m.yaml").error,
+            "m.yaml:2: vehicle.empty_mass_kg: 1e+300 is beyond any plausible value (|x| <= 1e+07 "
+            "kg)");
+  const ConfigLoad t = load_config_text(
+      std::string(kMinimal) + "estimator:\n  static_init:\n    settle_s: 1e13\n", "t.yaml");
+  EXPECT_EQ(t.error,
+            "t.yaml:14: estimator.static_init.settle_s: 1e+13 is beyond any plausible value (|x| "
+            "<= 1e+06 s)");
+  std::string gears = kMinimal;
+  gears.insert(gears.find("suspension:"), "  rotating_mass_by_gear_kg: [10, 1e99]\n");
+  const ConfigLoad g = load_config_text(gears, "g.yaml");
+  EXPECT_NE(g.error.find("vehicle.rotating_mass_by_gear_kg: element 1: 1e+99 is beyond"),
+            std::string::npos)
+      << g.error;
+}
+
+TEST(ConfigManyHands, ValidationErrorsNameTheLineOfTheirKey) {
+  std::string text = kMinimal;
+  text.replace(text.find("0.31"), 4, "-0.31");
+  text += "estimator:\n  rls:\n    forgetting_factor: 0.5\n";
+  const ConfigLoad c = load_config_text(text, "v.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.error.substr(0, c.error.find('\n')),
+            "v.yaml:5: vehicle.wheel_radius_m: must be > 0, got -0.31");
+  EXPECT_NE(c.error.find("\nv.yaml:14: estimator.rls.forgetting_factor: must be in"),
+            std::string::npos)
+      << c.error;
+}
+
+TEST(ConfigManyHands, SpecialFilesAreRefusedWithTheirKind) {
+  EXPECT_EQ(load_config("/dev/zero").error,
+            "/dev/zero: cannot read the config: is a character device");
+  EXPECT_EQ(load_config("/tmp").error, "/tmp: cannot read the config: is a directory");
 }
 
 }  // namespace

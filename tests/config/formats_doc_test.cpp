@@ -33,15 +33,13 @@ std::string documented_config() {
   return doc.substr(begin + open.size(), end - begin - open.size());
 }
 
-/// Keys of the loaders whose sections docs/formats.md documents (the can.inputs entries are
-/// documented in docs/signal-mapping.md).
-std::set<std::string> loader_keys() {
+/// The keys the given loader sources read: calls with a literal key, and the entries of field
+/// tables ({"key", &Struct::member, ...}).
+std::set<std::string> loader_keys(std::initializer_list<const char*> files) {
   std::set<std::string> keys;
-  // Calls with a literal key, and the entries of field tables ({"key", &Struct::member, ...}).
   const std::regex call(
       R"re(\b(?:read|require|child|raw|has)\("([a-z_0-9]+)"|\{"([a-z_0-9]+)", &[A-Za-z]+::)re");
-  for (const char* file : {"/src/config/config.cpp", "/include/vmass/config/suspension_section.hpp",
-                           "/src/service/service_config.cpp"}) {
+  for (const char* file : files) {
     const std::string source = read_file(std::string(VMASS_SOURCE_DIR) + file);
     EXPECT_FALSE(source.empty()) << file;
     for (std::sregex_iterator it(source.begin(), source.end(), call), end; it != end; ++it) {
@@ -60,6 +58,13 @@ TEST(FormatsDoc, TheDocumentedConfigLoadsAsItStands) {
   EXPECT_TRUE(settings.ok()) << settings.error;
 }
 
+/// Keys of the loaders whose sections docs/formats.md documents (the can.inputs entries are
+/// documented in docs/signal-mapping.md).
+std::set<std::string> loader_keys() {
+  return loader_keys({"/src/config/config.cpp", "/include/vmass/config/suspension_section.hpp",
+                      "/src/service/service_config.cpp"});
+}
+
 TEST(FormatsDoc, EveryKeyTheLoadersReadIsDocumented) {
   const std::string text = documented_config();
   const std::set<std::string> keys = loader_keys();
@@ -68,6 +73,27 @@ TEST(FormatsDoc, EveryKeyTheLoadersReadIsDocumented) {
     const std::regex documented("(^|\n) *" + key + ":");
     EXPECT_TRUE(std::regex_search(text, documented))
         << key << " is read by the loader but not documented in docs/formats.md";
+  }
+}
+
+}  // namespace
+}  // namespace vmass
+
+namespace vmass {
+namespace {
+
+// docs/signal-mapping.md documents the can: section: every key its loaders read (can.inputs,
+// can.e2e, can.plausibility) appears there as "key:".
+TEST(FormatsDoc, EveryCanKeyIsInTheSignalMappingDoc) {
+  const std::string doc = read_file(VMASS_SOURCE_DIR "/docs/signal-mapping.md");
+  const std::set<std::string> keys =
+      loader_keys({"/src/signals/signal_mapping.cpp", "/src/signals/message_protection.cpp",
+                   "/src/signals/plausibility_params.cpp"});
+  ASSERT_GT(keys.size(), 30u) << "the can: loaders' keys were not found in their sources";
+  for (const std::string& key : keys) {
+    const std::regex documented("[ {,]" + key + ":");
+    EXPECT_TRUE(std::regex_search(doc, documented))
+        << key << " is read by the can: loaders but not documented in docs/signal-mapping.md";
   }
 }
 

@@ -10,6 +10,13 @@
 namespace vmass {
 namespace {
 
+// The lateral block is off by default (docs/estimator.md); these tests are about the block.
+LateralParams enabled_lateral() {
+  LateralParams p;
+  p.enabled = true;
+  return p;
+}
+
 Eigen::Vector2d batch_fit(const std::vector<RegressionPair>& pairs) {
   Eigen::MatrixXd phi(pairs.size(), 2);
   Eigen::VectorXd y(pairs.size());
@@ -25,7 +32,7 @@ TEST(LateralExtractor, SlalomRegressesToTheMass) {
   const VehicleParams v = testing::test_vehicle();
   testing::BicycleDrive drive;
   const auto samples = testing::bicycle_samples(drive, v, 0.0, 60.0, 0.01);
-  LateralExtractor ex(v, LateralParams{}, DifferencingParams{});
+  LateralExtractor ex(v, enabled_lateral(), DifferencingParams{});
   std::vector<RegressionPair> pairs;
   for (const Sample& s : samples) {
     const Extraction e = ex.step(s);
@@ -43,7 +50,7 @@ TEST(LateralExtractor, SmallSteeringAngleYieldsNoPair) {
   const VehicleParams v = testing::test_vehicle();
   testing::BicycleDrive drive;
   drive.steering_wheel_rad = [](double t) { return 0.2 * std::sin(2.0 * 3.14159 * 0.4 * t); };
-  LateralExtractor ex(v, LateralParams{}, DifferencingParams{});  // 0.2 rad = 11.5 deg < 15
+  LateralExtractor ex(v, enabled_lateral(), DifferencingParams{});  // 0.2 rad = 11.5 deg < 15
   for (const Sample& s : testing::bicycle_samples(drive, v, 0.0, 10.0, 0.01)) {
     EXPECT_FALSE(ex.step(s).has_pair());
   }
@@ -54,7 +61,7 @@ TEST(LateralExtractor, AcceleratingVehicleIsNotPureLateral) {
   testing::BicycleDrive drive;
   auto samples = testing::bicycle_samples(drive, v, 0.0, 10.0, 0.01);
   for (Sample& s : samples) s.accel_x_mps2 += 1.0;  // v_x not constant
-  LateralExtractor ex(v, LateralParams{}, DifferencingParams{});
+  LateralExtractor ex(v, enabled_lateral(), DifferencingParams{});
   for (const Sample& s : samples) EXPECT_FALSE(ex.step(s).has_pair());
 }
 
@@ -63,7 +70,7 @@ TEST(LateralExtractor, LowSpeedYieldsNoPairAndNoNaN) {
   testing::BicycleDrive drive;
   auto samples = testing::bicycle_samples(drive, v, 0.0, 5.0, 0.01);
   for (Sample& s : samples) s.speed_mps = 0.0;
-  LateralExtractor ex(v, LateralParams{}, DifferencingParams{});
+  LateralExtractor ex(v, enabled_lateral(), DifferencingParams{});
   for (const Sample& s : samples) {
     const Extraction e = ex.step(s);
     EXPECT_EQ(e.verdict, PairVerdict::kSpeed);

@@ -31,6 +31,11 @@ std::vector<RegressionPair> extract(const std::vector<Sample>& samples, const Ve
   for (const Sample& s : samples) {
     const Extraction e = ex.step(s);
     if (e.has_pair()) pairs.push_back(e.pair);
+    // Pairs kept until the lag was identified come out once it is.
+    Extraction released;
+    while (ex.pop_released(&released)) {
+      if (released.has_pair()) pairs.push_back(released.pair);
+    }
   }
   return pairs;
 }
@@ -73,13 +78,13 @@ TEST(LongitudinalExtractor, GatesOfTableII) {
   LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
   LongitudinalDrive drive;
   auto samples = testing::longitudinal_samples(drive, v, 0.0, 5.0, 15.0, 0.01);
-  // Lateral acceleration above 0.2 m/s^2 blocks every pair.
-  for (Sample& s : samples) s.accel_y_mps2 = 0.25;
+  // Lateral acceleration above the gate blocks every pair.
+  for (Sample& s : samples) s.accel_y_mps2 = LongitudinalParams{}.max_abs_accel_y_mps2 + 0.05;
   for (const Sample& s : samples) {
     const Extraction e = ex.step(s);
     EXPECT_FALSE(e.has_pair());
   }
-  // Constant speed: |da_x| below 0.01 -> no pair.
+  // Constant speed: |da_x| below its gate -> no pair.
   LongitudinalExtractor cruise(v, LongitudinalParams{}, DifferencingParams{});
   LongitudinalDrive flat;
   flat.accel_mps2 = [](double) { return 0.0; };
@@ -99,12 +104,20 @@ TEST(LongitudinalExtractor, GearChangeInsideWindowIsRejected) {
   LongitudinalDrive drive;
   auto samples = testing::longitudinal_samples(drive, v, 0.0, 2.0, 15.0, 0.01);
   for (std::size_t i = 0; i < samples.size(); ++i) samples[i].set(Input::kGear, i < 100 ? 2 : 3);
+  // A shift ends the clean stretch: no pair until a whole window and its settle time have
+  // passed in the new gear.
+  const auto quiet_ticks = static_cast<std::size_t>(
+      (DifferencingParams{}.differencing_dt_s + LongitudinalParams{}.settle_s) * 100.0);
+  int accepted_before = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const Extraction e = ex.step(samples[i]);
-    if (i == 100 || i == 101) {
-      EXPECT_EQ(e.verdict, PairVerdict::kGearChange) << i;
+    if (i < 100) accepted_before += e.has_pair() || e.verdict == PairVerdict::kAwaitingLag;
+    if (i >= 100 && i < 100 + quiet_ticks) {
+      EXPECT_FALSE(e.has_pair()) << i;
+      EXPECT_NE(e.verdict, PairVerdict::kAwaitingLag) << i;
     }
   }
+  EXPECT_GT(accepted_before, 0);  // the stretch before the shift was usable
 }
 
 TEST(LongitudinalExtractor, NeverDifferencesAcrossInvalidOrNonFiniteInputs) {

@@ -27,6 +27,7 @@ inline VehicleParams test_vehicle() {
   v.cornering_stiffness_front_n_per_rad = 1.5e5;
   v.cornering_stiffness_rear_n_per_rad = 1.7e5;
   v.rotating_mass_kg = 40.0;
+  v.pitch_gradient_deg_per_g = 0.0;  // the synthetic accelerometer does not pitch
   return v;
 }
 

@@ -54,7 +54,8 @@ TEST(SamplesCsv, EmptyCellsAreInvalidAndBadRowsAreSkipped) {
 
 TEST(SamplesCsv, MissingFileAndHeader) {
   SamplesCsvReader missing("/nonexistent/samples.csv");
-  EXPECT_EQ(missing.error(), "/nonexistent/samples.csv: cannot open the samples file");
+  EXPECT_EQ(missing.error(),
+            "/nonexistent/samples.csv: cannot open the samples file: No such file or directory");
   const std::string path = write_temp("a,b\n1,2\n");
   SamplesCsvReader no_time(path);
   EXPECT_EQ(no_time.error(), path + ":1: the header has no time_s column");

@@ -20,6 +20,7 @@
 #include <vmass/mass_estimate_t.hpp>
 #include <vmass/status_t.hpp>
 
+#include "daemon_process.hpp"
 #include "test_drive.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/config/config.hpp"
@@ -30,64 +31,14 @@
 #include "vmass/service/state_store.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/signals/signal_table.hpp"
+#include "vmass/sim/sensor_model.hpp"
 
 namespace vmass {
 namespace {
 
 namespace fs = std::filesystem;
 
-class DaemonTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vmassd_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    csv_ = path("samples.csv");
-    ASSERT_TRUE(test::write_samples_csv(csv_, test::make_drive(test::DriveSpec{})));
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write_config(const std::string& extra, const std::string& type = "bayes") {
-    const std::string p = path("vmassd.yaml");
-    EXPECT_TRUE(test::write_text(p, test::test_config_yaml(extra, type)));
-    return p;
-  }
-  static int run(const std::string& command) {
-    const int status = std::system(command.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  /// Starts a command in the background; its pid and (later) exit code go to files.
-  void start(const std::string& command, const std::string& name) {
-    ASSERT_EQ(run("( " + command + " > " + path(name + ".log") + " 2>&1 & echo $! > " +
-                  path(name + ".pid") + "; wait $!; echo $? > " + path(name + ".rc") + " ) &"),
-              0);
-    for (int i = 0; i < 100 && !fs::exists(path(name + ".pid")); ++i) sleep_s(0.02);
-  }
-  /// Exit code of a started command, or -1 when it did not finish within timeout_s.
-  int wait_rc(const std::string& name, double timeout_s) {
-    for (double t = 0.0; t < timeout_s; t += 0.05) {
-      std::ifstream in(path(name + ".rc"));
-      int rc = -1;
-      if (in >> rc) return rc;
-      sleep_s(0.05);
-    }
-    return -1;
-  }
-  std::string read(const std::string& name) const {
-    std::ifstream in(path(name));
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-  static void sleep_s(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
-
-  fs::path dir_;
-  std::string csv_;
-};
+using DaemonTest = test::DaemonProcessTest;
 
 struct LoggedRun {
   std::vector<vmass::mass_estimate_t> estimates;
@@ -302,8 +253,11 @@ TEST_F(DaemonTest, CanLogReplayIsBitIdenticalToVmassReplayLog) {
     ASSERT_EQ(st.num_inputs, kInputCount);
     for (int i = 0; i < kInputCount; ++i) {
       const auto input = static_cast<Input>(i);
-      EXPECT_EQ(st.input_age_s[i], to_seconds(ages_us[i])) << input_name(input);
-      EXPECT_TRUE(st.input_valid[i]) << input_name(input);  // every input mapped and fresh
+      EXPECT_EQ(st.input_age_s[i], ages_us[i] < 0 ? -1.0 : to_seconds(ages_us[i]))
+          << input_name(input);
+      // Every input the simulated bus carries is mapped and fresh; the stand-ins are not mapped.
+      EXPECT_EQ(st.input_valid[i], (sim::kSensorModelInputs & input_bit(input)) != 0)
+          << input_name(input);
     }
 
     // A good estimate of the simulated 1659 kg car (paper Table V: errors of a few %).
@@ -404,6 +358,63 @@ TEST_F(DaemonTest, SigkillMidDriveThenRestartResumesFromSavedState) {
 }
 
 // A bad config is refused with file:line:key and exit code 2; an unknown CLI combination too.
+// A state file damaged on disk (cut short, a byte changed) or believable to its checksum only
+// (a mass of -5000 kg): vmassd says why, starts fresh (not restored), exits 0, and its final
+// save replaces the file with one that loads.
+TEST_F(DaemonTest, DamagedStateFilesAreRefusedWithTheirReasonAndReplaced) {
+  const std::string config = write_config("");
+  const std::string good = path("good.state");
+  ASSERT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                " --speed max --lcm-url memq:// --state-file " + good + " 2> " + path("good.log")),
+            0)
+      << read("good.log");
+  const ConfigLoad c = load_config(config);
+  ASSERT_TRUE(c.ok());
+  const std::uint64_t fingerprint = service::state_fingerprint(c.config->pipeline);
+  const service::StateLoad saved = service::load_state_file(good, fingerprint);
+  ASSERT_EQ(saved.status, service::StateLoadStatus::kLoaded) << saved.error;
+  const std::string text = read("good.state");
+  std::string garbled = text;
+  const std::size_t digit = garbled.find_first_of("123456789", garbled.size() / 2);
+  ASSERT_NE(digit, std::string::npos);
+  garbled[digit] = garbled[digit] == '9' ? '1' : static_cast<char>(garbled[digit] + 1);
+  service::SavedState absurd = saved.state;
+  absurd.snapshot.nig_mean[0] = -5000.0;  // the test config's estimator is Bayes
+  const std::string absurd_text = service::format_state(absurd);
+
+  struct Case {
+    const char* name;
+    std::string contents;
+    std::string reason;
+  };
+  const Case cases[] = {
+      {"truncated", text.substr(0, text.size() / 2), "no checksum line (truncated file?)"},
+      {"garbled", garbled, "checksum mismatch (corrupt file)"},
+      {"implausible", absurd_text,
+       "saved state not believable (Bayes mass -5000 kg outside [750, 7500] kg)"},
+  };
+  for (const Case& k : cases) {
+    const std::string state = path(std::string(k.name) + ".state");
+    const std::string log = path(std::string(k.name) + ".log");
+    const std::string lcm_log = path(std::string(k.name) + ".lcm");
+    ASSERT_TRUE(test::write_text(state, k.contents));
+    EXPECT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+                  " --speed max --lcm-url 'file://" + lcm_log + "?mode=w' --state-file " + state +
+                  " 2> " + log),
+              0)
+        << k.name << ": " << read(std::string(k.name) + ".log");
+    const std::string out = read(std::string(k.name) + ".log");
+    EXPECT_NE(out.find(k.reason), std::string::npos) << k.name << ": " << out;
+    EXPECT_NE(out.find("starting fresh"), std::string::npos) << k.name << ": " << out;
+    const LoggedRun run_log = read_lcm_log(lcm_log);
+    ASSERT_FALSE(run_log.statuses.empty()) << k.name;
+    EXPECT_FALSE(run_log.statuses.back().state_restored) << k.name;
+    const service::StateLoad after = service::load_state_file(state, fingerprint);
+    EXPECT_EQ(after.status, service::StateLoadStatus::kLoaded) << k.name << ": " << after.error;
+    EXPECT_GT(after.state.snapshot.nig_mean[0], 1000.0) << k.name;
+  }
+}
+
 TEST_F(DaemonTest, RefusesToStartOnConfigErrors) {
   const std::string config = write_config("lcm:\n  estimate_chanel: X\n");
   EXPECT_EQ(run(std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +

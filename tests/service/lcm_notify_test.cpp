@@ -1,9 +1,13 @@
 // LCM publish/subscribe round trip on memq:// (every field as sent, every double finite) and the
-// sd_notify protocol through a NOTIFY_SOCKET datagram socket bound by the test (no systemd).
+// sd_notify protocol through a NOTIFY_SOCKET datagram socket bound by the test (no systemd),
+// including no WATCHDOG=1 while vmassd's estimator thread is stalled.
+#include <fcntl.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -325,38 +329,39 @@ TEST(SystemdNotifier, NoSocketNoNotifications) {
 
 // The daemon itself under a fake systemd: READY=1 after start-up, STATUS= lines, WATCHDOG=1 while
 // the estimator ticks, STOPPING=1 on SIGTERM, exit 0.
+/// 30 s of standstill samples at 100 Hz and a config for them (plus `extra` YAML).
+bool write_idle_drive(const std::string& csv, const std::string& config, const std::string& extra) {
+  FILE* f = std::fopen(csv.c_str(), "w");
+  if (f == nullptr) return false;
+  std::fprintf(f,
+               "time_s,wheel_torque_nm,brake_pressure_pa,accel_x_mps2,accel_y_mps2,"
+               "yaw_rate_radps,speed_mps,steering_wheel_angle_rad,"
+               "rear_right_deflection_m,gear\n");
+  for (int i = 0; i <= 3000; ++i) std::fprintf(f, "%.2f,0,0,0,0,0,0,0,0.01,1\n", i * 0.01);
+  std::fclose(f);
+  f = std::fopen(config.c_str(), "w");
+  if (f == nullptr) return false;
+  std::fprintf(f,
+               "vehicle:\n  empty_mass_kg: 1500\n  wheelbase_m: 2.7\n"
+               "  cg_to_front_axle_m: 1.2\n  wheel_radius_m: 0.31\n"
+               "  brake_gain_n_per_pa: 0.0033\n  steering_ratio: 15.5\n"
+               "  cornering_stiffness_front_n_per_rad: 150000\n"
+               "  cornering_stiffness_rear_n_per_rad: 170000\n"
+               "suspension:\n  stiffness_n_per_m: 30000\n%s",
+               extra.c_str());
+  std::fclose(f);
+  return true;
+}
+
 TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
   NotifySocket sock;
   ASSERT_TRUE(sock.ok());
   const std::string dir = "/tmp/vmass_notify_daemon_" + std::to_string(::getpid());
   ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
   // 30 s of samples at real speed: it keeps running until the SIGTERM below.
-  std::string csv = dir + "/samples.csv";
-  {
-    FILE* f = std::fopen(csv.c_str(), "w");
-    ASSERT_NE(f, nullptr);
-    std::fprintf(f,
-                 "time_s,wheel_torque_nm,brake_pressure_pa,accel_x_mps2,accel_y_mps2,"
-                 "yaw_rate_radps,speed_mps,steering_wheel_angle_rad,"
-                 "rear_right_deflection_m,gear\n");
-    for (int i = 0; i <= 3000; ++i) {
-      std::fprintf(f, "%.2f,0,0,0,0,0,0,0,0.01,1\n", i * 0.01);
-    }
-    std::fclose(f);
-  }
+  const std::string csv = dir + "/samples.csv";
   const std::string config = dir + "/vmassd.yaml";
-  {
-    FILE* f = std::fopen(config.c_str(), "w");
-    ASSERT_NE(f, nullptr);
-    std::fprintf(f,
-                 "vehicle:\n  empty_mass_kg: 1500\n  wheelbase_m: 2.7\n"
-                 "  cg_to_front_axle_m: 1.2\n  wheel_radius_m: 0.31\n"
-                 "  brake_gain_n_per_pa: 0.0033\n  steering_ratio: 15.5\n"
-                 "  cornering_stiffness_front_n_per_rad: 150000\n"
-                 "  cornering_stiffness_rear_n_per_rad: 170000\n"
-                 "suspension:\n  stiffness_n_per_m: 30000\n");
-    std::fclose(f);
-  }
+  ASSERT_TRUE(write_idle_drive(csv, config, ""));
   // WATCHDOG_PID unset: sd_watchdog_enabled() accepts the watchdog for any process.
   const std::string command = "NOTIFY_SOCKET=" + sock.path() +
                               " WATCHDOG_USEC=400000 " VMASSD_BIN " --config " + config +
@@ -393,6 +398,70 @@ TEST(SystemdNotifier, DaemonNotifiesReadyWatchdogStatusAndStopping) {
       << "vmassd did not stop within 5 s of SIGTERM";
   EXPECT_EQ(std::system(("grep -q 'stopped:' " + dir + "/log.txt").c_str()), 0);
   std::system(("rm -rf " + dir).c_str());
+}
+
+TEST(SystemdNotifier, AStalledEstimatorThreadGetsNoWatchdogPing) {
+  NotifySocket sock;
+  ASSERT_TRUE(sock.ok());
+  timeval tv{0, 100'000};  // 100 ms: the pipe below is drained between datagrams
+  ASSERT_EQ(::setsockopt(sock.fd(), SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv), 0);
+  const std::string dir = "/tmp/vmass_notify_stall_" + std::to_string(::getpid());
+  ASSERT_EQ(std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
+  const std::string csv = dir + "/samples.csv";
+  const std::string config = dir + "/vmassd.yaml";
+  ASSERT_TRUE(write_idle_drive(csv, config, "daemon:\n  publish_queue: 16\n"));
+  // LCM writes its log into a pipe nobody reads: once the pipe (64 KiB) and the publish queue
+  // are full, the estimator thread of a recording waits to publish (it never drops) and stops
+  // ticking; the main loop still runs and sends STATUS= lines.
+  const std::string pipe = dir + "/lcm.pipe";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  const int reader = ::open(pipe.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  ASSERT_GE(reader, 0);
+  const std::string command =
+      "NOTIFY_SOCKET=" + sock.path() + " WATCHDOG_USEC=400000 " VMASSD_BIN " --config " + config +
+      " --samples " + csv + " --no-restore --state-file " + dir + "/state --lcm-url 'file://" +
+      pipe + "?mode=w' > " + dir + "/log.txt 2>&1 & echo $! > " + dir + "/pid";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  // Not reading: the pings stop (the main loop runs on: the pings come back below, and a
+  // STATUS= line is sent only when it changes, which it does not while nothing ticks).
+  const Clock::time_point t0 = Clock::now();
+  Clock::time_point last_ping = t0;
+  int pings = 0;
+  while (seconds_since(t0) < 15.0 && !(pings >= 3 && seconds_since(last_ping) > 2.0)) {
+    if (sock.next() == "WATCHDOG=1") {
+      ++pings;
+      last_ping = Clock::now();
+    }
+  }
+  EXPECT_GE(pings, 3) << "it ticked before the pipe filled";
+  EXPECT_GT(seconds_since(last_ping), 2.0) << "pinged while its estimator thread was stalled";
+  // Reading again: the estimator thread ticks and the pings come back.
+  char buf[65536];
+  int pings_after = 0;
+  for (const Clock::time_point t1 = Clock::now(); seconds_since(t1) < 5.0 && pings_after < 3;) {
+    while (::read(reader, buf, sizeof buf) > 0) {
+    }
+    pings_after += sock.next() == "WATCHDOG=1";
+  }
+  EXPECT_GE(pings_after, 3) << "no pings once the estimator thread ran again";
+  ASSERT_EQ(std::system(("kill -TERM $(cat " + dir + "/pid)").c_str()), 0);
+  for (const Clock::time_point t2 = Clock::now(); seconds_since(t2) < 5.0;) {
+    while (::read(reader, buf, sizeof buf) > 0) {
+    }
+    if (sock.next().find("STOPPING=1") != std::string::npos) break;
+  }
+  ASSERT_EQ(std::system(("for i in $(seq 50); do kill -0 $(cat " + dir +
+                         "/pid) 2>/dev/null || exit 0; sleep 0.1; done; exit 1")
+                            .c_str()),
+            0)
+      << "vmassd did not stop within 5 s of SIGTERM";
+  ::close(reader);
+  EXPECT_EQ(std::system(("grep -q 'stopped:' " + dir + "/log.txt").c_str()), 0);
+  if (!::testing::Test::HasFailure()) std::system(("rm -rf " + dir).c_str());
 }
 
 }  // namespace

@@ -51,6 +51,6 @@ unshare -n sh -c '
   exit $rc' sh "$vmassd" "$out" "$url" "$types" "$python" "$example" ||
   fail "subscriber: $(tail -3 "$out/subscriber.txt") $(tail -3 "$out/live.err")"
 grep -q "^VMASS_ESTIMATE t .* mass .* kg" "$out/subscriber.txt" || fail "no estimate printed"
-grep -q "^VMASS_STATUS vmassd .* inputs valid [0-9] of 9" "$out/subscriber.txt" ||
+grep -q "^VMASS_STATUS vmassd .* inputs valid [0-9]* of [0-9]*" "$out/subscriber.txt" ||
   fail "no status printed: $(head -3 "$out/subscriber.txt")"
 echo "ok: $(grep -c '^VMASS_ESTIMATE' "$out/subscriber.txt") estimates received in Python"

@@ -254,3 +254,46 @@ TEST_F(CanInputsFiles, ErrorsNameTheFileLineAndKey) {
 
 }  // namespace
 }  // namespace vmass::signals
+
+namespace vmass::signals {
+namespace {
+
+// Files from many hands: a mapping onto a signal with factor 0 (always its offset) or onto a
+// message name the DBC uses twice (the config would take the first) is refused.
+TEST(SignalMappingManyHands, FactorZeroAndAmbiguousMessageNames) {
+  can::DbcParseResult r = can::parse_dbc(R"(BO_ 1 Speeds: 8 E
+ SG_ Zero : 0|16@1+ (0,0) [0|0] "km/h" E
+ SG_ Kmh : 16|16@1+ (0.01,0) [0|0] "km/h" E
+BO_ 2 Speeds: 8 E
+ SG_ Kmh : 0|16@1+ (0.01,0) [0|0] "km/h" E
+)",
+                                         "twice.dbc");
+  ASSERT_TRUE(r.ok());
+  const auto decoder = can::Decoder::compile(std::move(r.database));
+  ASSERT_TRUE(decoder);
+  SignalMapping m;
+  EXPECT_EQ(parse_signal_mapping(YAML::Load("speed: {message: Speeds, signal: Kmh}"), "c.yaml",
+                                 *decoder, "twice.dbc", &m),
+            "c.yaml:1: can.inputs.speed.message: 'Speeds' names 2 messages in twice.dbc: rename "
+            "them in the DBC");
+}
+
+TEST(SignalMappingManyHands, FactorZeroIsRefused) {
+  can::DbcParseResult r =
+      can::parse_dbc("BO_ 1 Speeds: 8 E\n SG_ Zero : 0|16@1+ (0,0) [0|0] \"km/h\" E\n", "zero.dbc");
+  const auto decoder = can::Decoder::compile(std::move(r.database));
+  ASSERT_TRUE(decoder);
+  SignalMapping m;
+  EXPECT_EQ(parse_signal_mapping(YAML::Load("speed: {message: Speeds, signal: Zero}"), "c.yaml",
+                                 *decoder, "zero.dbc", &m),
+            "c.yaml:1: can.inputs.speed.signal: Speeds.Zero has factor 0 in zero.dbc: its value "
+            "is always its offset; fix the DBC");
+}
+
+TEST(SignalMappingManyHands, AHugeTimeoutIsRefused) {
+  expect_error("speed: {message: Speeds, signal: SpeedKmh, timeout_s: 1e13}",
+               "test.yaml:1: can.inputs.speed.timeout_s: 1e+13 is beyond any plausible value");
+}
+
+}  // namespace
+}  // namespace vmass::signals

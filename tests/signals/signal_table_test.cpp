@@ -39,10 +39,13 @@ class SignalTableTest : public ::testing::Test {
  protected:
   SignalTableTest() : decoder_(testing::test_decoder()), table_(decoder_, mapping(kInputs)) {}
 
+  /// The mapping, enforcing the DBC's [min|max] as can.enforce_dbc_ranges: true does (these
+  /// tests check that option; the default is checked by DbcRangesAreNotValidityByDefault).
   SignalMapping mapping(const std::string& yaml) {
     SignalMapping m;
     const std::string e = parse_signal_mapping(YAML::Load(yaml), "t.yaml", *decoder_, "t", &m);
     EXPECT_EQ(e, "");
+    m.enforce_dbc_ranges = true;
     return m;
   }
   can::CanFrame frame(const std::string& message, const std::map<std::string, double>& values,
@@ -74,7 +77,9 @@ TEST_F(SignalTableTest, UnitsConvertToSi) {
   send("Level", {{"Page", 1.0}, {"LevelRR", 23.45}}, 1000);
   send("Level", {{"Page", 0.0}, {"Gear", -1.0}}, 1000);
   const Sample s = table_.sample_at(2000);
-  EXPECT_EQ(s.valid, kAllInputs & ~input_bit(Input::kAccelY));
+  // All but a_y and the stand-ins this bus does not carry (brake switch, engine torque and speed).
+  EXPECT_EQ(s.valid, kAllInputs & ~input_bit(Input::kAccelY) & ~input_bit(Input::kBrakeSwitch) &
+                         ~input_bit(Input::kEngineTorque) & ~input_bit(Input::kEngineSpeed));
   EXPECT_NEAR(s.speed_mps, 25.0, 1e-12);                            // 90 km/h
   EXPECT_NEAR(s.wheel_torque_nm, 100.0 + 2.0 * 50.0 + 5.0, 1e-12);  // sum with gain + offset
   EXPECT_NEAR(s.brake_pressure_pa, 2.5e6, 1e-6);                    // 2500 kPa
@@ -175,6 +180,22 @@ TEST_F(SignalTableTest, NanInfAndOutOfRangeAreInvalidForThatFrame) {
   // The bad value is never applied: the last good one stays in the state.
   EXPECT_NEAR(table_.input_state(Input::kYawRate).value, -100.0 * kPi / 180.0, 1e-12);
   EXPECT_FALSE(table_.input_state(Input::kYawRate).good);
+}
+
+// Real files carry wrong ranges ([0|65535] on a signed yaw rate): by default a value outside
+// the DBC's [min|max] is used as it is (the plausibility limits judge it, not the DBC).
+TEST_F(SignalTableTest, DbcRangesAreNotValidityByDefault) {
+  SignalMapping m;
+  ASSERT_EQ(parse_signal_mapping(YAML::Load("yaw_rate: {message: Imu, signal: Yaw}"), "t.yaml",
+                                 *decoder_, "t", &m),
+            "");
+  EXPECT_FALSE(m.enforce_dbc_ranges);
+  SignalTable table(decoder_, m);
+  table.on_frame(frame("Imu", {{"Yaw", -250.0}}, 0));  // the DBC says [-100|100] deg/s
+  const Sample s = table.sample_at(0);
+  ASSERT_TRUE(s.has(Input::kYawRate));
+  EXPECT_NEAR(s.yaw_rate_radps, -250.0 * kPi / 180.0, 1e-12);
+  EXPECT_EQ(table.counters().inputs[static_cast<int>(Input::kYawRate)].invalid_values, 0u);
 }
 
 TEST_F(SignalTableTest, ShortUnknownRemoteAndErrorFramesAreCounted) {

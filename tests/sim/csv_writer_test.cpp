@@ -59,7 +59,7 @@ TEST(SimCsv, InvalidInputsAreEmptyCells) {
   s.set(Input::kGear, 3);
   std::ostringstream os;
   write_samples_csv(os, {s});
-  EXPECT_EQ(os.str(), std::string(kSamplesCsvHeader) + "\n1.23,,,,,,12.5,,,3\n");
+  EXPECT_EQ(os.str(), std::string(kSamplesCsvHeader) + "\n1.23,,,,,,12.5,,,3,,,\n");
 }
 
 TEST(SimCsv, SamplesReadBackToTheSimulatedValues) {
@@ -74,7 +74,7 @@ TEST(SimCsv, SamplesReadBackToTheSimulatedValues) {
   std::size_t k = 0;
   while (std::getline(is, line)) {
     const std::vector<std::string> cells = split(line);
-    ASSERT_EQ(cells.size(), 10u);
+    ASSERT_EQ(cells.size(), 1u + kInputCount);
     EXPECT_EQ(from_seconds(std::strtod(cells[0].c_str(), nullptr)), r.samples[k].time_us);
     for (int i = 0; i < kInputCount; ++i) {
       const double v = r.samples[k].value(static_cast<Input>(i));

@@ -69,7 +69,7 @@ TEST(SimSensors, ChannelsCarryTheDocumentedBiasNoiseAndResolution) {
   for (std::size_t k = 0; k < r.samples.size(); ++k) {
     const Sample& m = r.samples[k];
     const TruthRow& t = r.truth[k];
-    EXPECT_EQ(m.valid, kAllInputs);
+    EXPECT_EQ(m.valid, kSensorModelInputs);
     ax.push_back(m.accel_x_mps2 - t.accel_x_mps2);
     ay.push_back(m.accel_y_mps2 - t.accel_y_mps2);
     yaw.push_back(m.yaw_rate_radps - t.yaw_rate_radps);

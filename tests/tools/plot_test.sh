@@ -1,7 +1,9 @@
 #!/bin/sh
 # vmass-plot on what people have: two runs of one drive (RLS and Bayes) overlaid against the
 # truth, and an LCM log of vmassd over the same drive (read with LCM's own log reader):
-#   - the mass axis is scaled to the data (the truth inside, far tighter than +-15 %), an error
+#   - the mass axis is scaled to the data (the truth inside, tighter than +-10 %: the estimates
+#     padded by the median 95 % half-width, which since estimator v2 holds the model's own
+#     uncertainty, about +-7 % on this drive), an error
 #     panel is drawn with the truth, rows without an estimate are skipped and counted
 #   - the LCM log's estimates, exported to CSV, are byte-identical to vmass-replay's CSV, and its
 #     status CSV carries vmassd's version
@@ -31,7 +33,7 @@ truth=$(awk -F, 'NR == 2 { print $2 }' d/truth.csv)
 sed -n 's/.*mass axis \[\([0-9.]*\), \([0-9.]*\)\] kg.*/\1 \2/p' plot.txt | {
   read -r lo hi
   awk -v lo="$lo" -v hi="$hi" -v t="$truth" \
-    'BEGIN { exit !(lo < t && t < hi && hi - lo < 0.1 * t) }' ||
+    'BEGIN { exit !(lo < t && t < hi && hi - lo < 0.2 * t) }' ||
     fail "mass axis [$lo, $hi] not scaled to the data around the truth $truth"
 } || exit 1
 echo "ok: two runs overlaid; $(grep 'mass axis' plot.txt)"

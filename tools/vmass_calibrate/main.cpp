@@ -37,6 +37,7 @@
 #include "vmass/calibrate/suspension_fit.hpp"
 #include "vmass/can/log_format.hpp"
 #include "vmass/config/config.hpp"
+#include "vmass/io/regular_file.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_table.hpp"
@@ -71,13 +72,15 @@ std::string shell_quote(const std::string& s) {
 }
 
 // True when the file is a CAN log (candump -l, Vector ASC or BLF, PEAK TRC, ASAM MDF4, ...: the
-// format found from its content), not a CSV; false for a file that cannot be read.
+// format found from its content), not a CSV; false for a file that cannot be read or is no
+// regular file (the CSV reader says why).
 bool is_can_log(const std::string& path) {
+  if (!vmass::io::check_input_file(path, false).empty()) return false;
   std::ifstream in(path, std::ios::binary);
   std::string head(vmass::can::kLogFormatProbeBytes, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
-  if (head.empty()) return false;  // missing or empty: the CSV reader says which
+  if (head.empty()) return false;  // empty: the CSV reader says so
   return vmass::can::detect_log_format(head) != vmass::can::LogFormat::kUnknown;
 }
 
@@ -116,6 +119,7 @@ std::string read_log_series(const std::string& path, const vmass::Config& config
     if (s.has(vmass::Input::kSpeed)) p.speed_mps = s.speed_mps;
     series->push_back(p);
   });
+  if (const std::string failed = source.read_error(); !failed.empty()) return failed;
   const auto& c = source.table().counters();
   char buf[200];
   std::snprintf(buf, sizeof buf,

@@ -9,9 +9,10 @@
 //                                                     print frames from SocketCAN as candump -l
 //
 // Exit codes (tools/common/exit_code.hpp): 0 ok; 1 failure (SocketCAN cannot be opened, dump
-// got fewer than --count frames before the idle timeout); 2 usage or input error (a DBC with
-// errors, or with deviations under --strict; a log that cannot be opened or is no CAN log);
-// decode exits 1 when the BLF/MDF4 converter failed on the way.
+// got fewer than --count frames before the idle timeout, a read error in the log); 2 usage or
+// input error (a DBC with errors, or with deviations under --strict: check reports every one,
+// decode decodes with what loaded and still exits 2; a log that cannot be opened or is no CAN
+// log); decode exits 1 when the BLF/MDF4 converter failed on the way.
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
@@ -77,18 +78,25 @@ void append_time(std::string& out, std::int64_t time_us) {
   out += buf;
 }
 
-std::optional<Decoder> load_decoder(const std::string& path, bool strict, bool quiet_warnings) {
+/// The DBC compiled for decoding; *had_errors when it loaded only in part (what loaded is still
+/// decoded, and the run then exits 2).
+std::optional<Decoder> load_decoder(const std::string& path, bool strict, bool quiet_warnings,
+                                    bool* had_errors) {
   DbcParseOptions opt;
   opt.strict = strict;
   DbcParseResult r = load_dbc_file(path, opt);
   for (const DbcDiagnostic& d : r.diagnostics) {
     if (d.severity == Severity::kError || !quiet_warnings) std::cerr << d.to_string() << "\n";
   }
-  if (r.diagnostics.size() == 1 && r.diagnostics[0].line == 0) return std::nullopt;  // unreadable
+  if (r.diagnostics.size() == 1 && r.diagnostics[0].line == 0 &&
+      r.diagnostics[0].severity == Severity::kError) {
+    return std::nullopt;  // unreadable, empty
+  }
+  *had_errors = !r.ok();
   if (!r.ok()) {
     if (strict) return std::nullopt;
     std::cerr << path << ": " << r.error_count()
-              << " error(s); decoding with what could be loaded\n";
+              << " error(s); decoding with what could be loaded (exit code 2)\n";
   }
   std::string error;
   auto d = Decoder::compile(std::move(r.database), &error);
@@ -243,7 +251,8 @@ DecodeStats decode_frames(rt::LogFrameSource& source, const Decoder& decoder, bo
 }
 
 int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
-  auto decoder = load_decoder(dbc, strict, json);
+  bool dbc_errors = false;
+  auto decoder = load_decoder(dbc, strict, json, &dbc_errors);
   if (!decoder) return vmass::tools::kExitUsage;
   std::unique_ptr<rt::LogFrameSource> source = open_decode_input(log);
   if (!source) return vmass::tools::kExitUsage;
@@ -255,7 +264,11 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
             << stats.too_short << " too short, " << stats.remote << " remote, "
             << stats.error_frames << " error frames, " << cs.corrupt << " corrupt "
             << source->unit() << "s\n";
-  return source->problem().empty() ? vmass::tools::kExitOk : vmass::tools::kExitFailure;
+  if (dbc_errors) return vmass::tools::kExitUsage;
+  if (source->problem().empty()) return vmass::tools::kExitOk;
+  // A converter's failure was reported with the records; a read error is said here.
+  if (!vmass::can::is_converted_format(source->format())) std::cerr << source->problem() << "\n";
+  return vmass::tools::kExitFailure;
 }
 
 int run_dump(const std::string& iface, long count, double idle_timeout_s, const std::string& dbc) {

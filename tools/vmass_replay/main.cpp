@@ -12,8 +12,10 @@
 // (an input older than 5 ticks is stale). Corrupt log lines are reported and counted, never fatal.
 // --truth is read only when given, and refused (exit 2) when its time base is not the input's
 // (Truth::check_time_base). At the end the open Bayes batch is flushed into the final estimate
-// the summary prints. Exit codes (tools/common/exit_code.hpp): 0 ok, 1 write or plot failure,
-// 2 usage, config or input error.
+// the summary prints. Records out of time order are put back in order within 50 ms, clock
+// jumps bounded (runtime::ClockGuard); the counts are reported. Exit codes
+// (tools/common/exit_code.hpp): 0 ok, 1 read error in the input, write or plot failure, 2 usage,
+// config or input error.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -115,9 +117,20 @@ std::unique_ptr<rt::InputSource> open_input(const Options& o, const vmass::Confi
   return std::move(recording.source);
 }
 
+/// The recording's clock: records put back in order, too late, clock jumps (all counted).
+void report_clock(const Options& o, const rt::InputSource& source) {
+  const rt::SourceCounters& c = source.counters();
+  if (c.reordered == 0 && c.late_dropped == 0 && c.time_jumps == 0) return;
+  std::cerr << "vmass-replay: " << o.input_path() << ": time: " << c.reordered
+            << " records put back in order, " << c.late_dropped
+            << " too late for the reorder window (dropped), " << c.time_jumps
+            << " clock jumps (bounded) or stray time stamps (dropped)\n";
+}
+
 /// What the input held: frames and lines of a log, skipped rows of a samples CSV.
 void report_input(const Options& o, const rt::InputSource& source, const rt::LogFrameSource* log,
                   const rt::TickRun& run) {
+  report_clock(o, source);
   if (const auto* samples = dynamic_cast<const rt::SamplesCsvSource*>(&source)) {
     for (const auto& w : samples->warnings()) std::cerr << "vmass-replay: warning: " << w << "\n";
     const std::int64_t skipped = source.counters().malformed.load();
@@ -218,6 +231,10 @@ int main(int argc, char** argv) {
   rt::TickRun run;
   const std::string refusal = replay(*source, step, params, truth, &summary, writer.get(), &run);
   report_input(o, *source, log, run);
+  if (const std::string failed = source->read_error(); !failed.empty()) {
+    std::cerr << "vmass-replay: " << failed << "\n";  // the run did not read its whole input
+    return kExitFailure;
+  }
   if (!refusal.empty()) {
     std::cerr << "vmass-replay: " << o.truth_path << ": not the truth of " << o.input_path() << ": "
               << refusal << "\n";

@@ -32,9 +32,11 @@ std::string_view describe_prior(StatusReason prior_reason) {
     case StatusReason::kLoadChanged:
       return "static prior after a load change, eq. 3";
     case StatusReason::kNoStaticPrior:
-      return "no-static prior: driving began before any standstill, the empty mass";
+      return "no-static prior: driving began before any standstill";
     case StatusReason::kRestored:
       return "prior restored from a saved state";
+    case StatusReason::kNoLoadSensor:
+      return "no load sensor: the empty mass plus half the payload capacity";
     default:
       return "no prior";
   }

@@ -164,6 +164,8 @@ EstimatorResult run_vmass(const std::string& name, const Config& config,
   r.status_end = std::string(status_name(e.status));
   r.reason_end = std::string(reason_name(e.reason));
   r.initial_mass_kg = e.initial_mass_kg;
+  r.identified_lag_s = pipeline->longitudinal().lag().lag_s();
+  r.accel_noise_mps2 = pipeline->longitudinal().accel_noise_mps2();
   return r;
 }
 
@@ -323,6 +325,8 @@ std::string to_json_lines(const RunResult& run) {
     j["status_end"] = r.status_end;
     j["reason_end"] = r.reason_end;
     j["initial_mass_kg"] = number(r.initial_mass_kg);
+    j["identified_lag_s"] = number(r.identified_lag_s);
+    j["accel_noise_mps2"] = number(r.accel_noise_mps2);
     out += j.dump() + "\n";
   }
   return out;

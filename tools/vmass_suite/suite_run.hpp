@@ -47,7 +47,9 @@ struct EstimatorResult {
   long accepted_longitudinal = 0, accepted_lateral = 0;
   long pairs_used = 0;
   std::string status_end, reason_end;
-  double initial_mass_kg = AccuracyResult::kNaN;  ///< vmass: the last prior (static or empty)
+  double initial_mass_kg = AccuracyResult::kNaN;   ///< vmass: the last prior (static or empty)
+  double identified_lag_s = AccuracyResult::kNaN;  ///< vmass: the longitudinal block's lag
+  double accel_noise_mps2 = AccuracyResult::kNaN;  ///< vmass: its measured noise
 };
 
 struct RunResult {

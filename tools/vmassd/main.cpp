@@ -14,8 +14,11 @@
 #include "exit_code.hpp"
 #include "vmass/service/daemon.hpp"
 #include "vmass/service/journal_logging.hpp"
+#include "vmass/service/stop_signals.hpp"
 
 int main(int argc, char** argv) {
+  // SIGTERM is handled from here on: during start-up it ends the process at once (exit 0).
+  vmass::service::install_stop_signals();
   CLI::App app{"vmassd: live vehicle mass estimation from CAN data, published on LCM"};
   vmass::service::DaemonOptions o;
   app.add_option("--config", o.config_path, "vmass YAML config")->required();

@@ -10,7 +10,9 @@
 // accepts. Blank lines and lines starting with '#' or ';' are comments.
 //
 // The reader never fails on a bad line: it reports the line number and reason, counts it and
-// goes on. The writer produces exactly what candump -l writes (can-utils 2020.11):
+// goes on. Lines are bounded (a longer one is corrupt; /dev/zero costs CPU, never memory), and
+// a read error ends the input with read_error() set: it is never taken for the end of the file. The
+// writer produces exactly what candump -l writes (can-utils 2020.11):
 // `(%010ld.%06ld) %s %s\n`, ids as %03X / %08X, data as %02X bytes, FD as ##%X, remote as R.
 //
 // Thread-safety: one reader or writer per thread; the free functions are reentrant.
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "vmass/can/can_frame.hpp"
+#include "vmass/io/line_reader.hpp"
 
 namespace vmass::can {
 
@@ -67,8 +70,11 @@ class CandumpReader {
   /// Reads from `in` (kept by reference). `source` names the input in error messages.
   explicit CandumpReader(std::istream& in, std::string source = "log");
 
-  /// Next frame; false at end of input. Corrupt lines are counted, reported, skipped.
+  /// Next frame; false at end of input or after a read error (read_error()). Corrupt lines are
+  /// counted, reported, skipped.
   bool next(CandumpRecord* record);
+  /// "source: read error: why" once the input failed; "" at a clean end.
+  const std::string& read_error() const { return read_error_; }
 
   /// Called for each corrupt line (in addition to keeping the first max_kept_errors).
   void on_error(std::function<void(const CandumpError&)> callback) {
@@ -80,10 +86,15 @@ class CandumpReader {
   std::int64_t line_number() const { return line_no_; }
 
   static constexpr std::size_t kMaxKeptErrors = 100;
+  /// Longest line read (a candump -l line is at most about 200 bytes).
+  static constexpr std::size_t kMaxLineBytes = 4096;
 
  private:
-  std::istream& in_;
+  void corrupt_line(const std::string& why);
+
+  io::LineReader lines_;
   std::string source_;
+  std::string read_error_;
   std::string line_;
   std::string why_;
   std::int64_t line_no_ = 0;

@@ -12,8 +12,10 @@
 // The parser is hand-written (no regex) and tolerant by default: deviations found in real files
 // (VAL_ without `;`, CM_ without object keyword, ids above 0x7FF without bit 31, names starting
 // with a digit, cp1252 text, ...) are loaded as meant and reported as warnings with file:line;
-// `DbcParseOptions::strict` turns them into errors. Malformed input stops the parse with one
-// error naming file, line, column and what was expected. Numbers are parsed locale-free.
+// `DbcParseOptions::strict` turns them into errors. A malformed statement is one error naming
+// file, line, column and what was expected, and the parse goes on at the next line that starts
+// a statement (every error is reported; after 100 the rest of the file is not read). Binary data
+// and empty files are one error. Numbers are parsed locale-free.
 //
 // Thread-safety: parse_dbc/load_dbc_file are reentrant; a Database is a plain value.
 #pragma once
@@ -118,7 +120,7 @@ struct DbcDiagnostic {
   int column = 0;  ///< 1-based byte column, 0 when the whole statement is meant
   std::string message;
 
-  /// "file:line:column: error: message" (column left out when 0).
+  /// "file:line:column: error: message" (column left out when 0, line too: the whole file).
   std::string to_string() const;
 };
 

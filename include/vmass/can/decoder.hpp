@@ -211,6 +211,9 @@ class SignalSelection {
   /// Calls on_value(int slot, double physical) for each selected signal present in the frame.
   template <class OnValue>
   DecodeStatus decode(const CanFrame& frame, OnValue&& on_value) const;
+  /// As decode(), for a frame that Decoder::classify() found to be of message m (kOk).
+  template <class OnValue>
+  void decode_message(int m, const CanFrame& frame, OnValue&& on_value) const;
 
  private:
   struct Entry {
@@ -355,11 +358,16 @@ DecodeStatus SignalSelection::decode(const CanFrame& frame, OnValue&& on_value) 
   int m = -1;
   const DecodeStatus st = decoder_->classify(frame, &m);
   if (st != DecodeStatus::kOk) return st;
+  decode_message(m, frame, on_value);
+  return DecodeStatus::kOk;
+}
+
+template <class OnValue>
+void SignalSelection::decode_message(int m, const CanFrame& frame, OnValue&& on_value) const {
   double value = 0.0;
   for (const Entry& e : by_message_[static_cast<std::size_t>(m)]) {
     if (decoder_->signal_value(frame, SignalRef{m, e.signal}, &value)) on_value(e.slot, value);
   }
-  return DecodeStatus::kOk;
 }
 
 }  // namespace vmass::can

@@ -106,7 +106,8 @@ class BayesEstimator final : public MassRegressor {
     Eigen::Vector2d phi_t_w_y = Eigen::Vector2d::Zero();
     double y_t_w_y = 0.0;
     int count = 0;
-    double effective_count = 0.0;  ///< sum of the pairs' information (the shape's n)
+    double effective_count = 0.0;    ///< sum of the pairs' information (the shape's n)
+    double reference_noise_n = 0.0;  ///< noise a pair's own noise_std_n is relative to
     void add(const RegressionPair& pair);
   };
   /// One conjugate update of `prior` by the sufficient statistics of a set of pairs.

@@ -38,6 +38,8 @@ enum class StatusReason : std::uint8_t {
   kIntervalNarrow,            ///< converged
   kInputsInvalid,             ///< degraded: see invalid_inputs
   kRestored,                  ///< state restored from a saved estimate
+  kNoLoadSensor,              ///< no deflection sensor that carries the load (none, or a
+                              ///< self-levelling axle): prior = empty + half the capacity
 };
 
 std::string_view status_name(EstimateStatus s);
@@ -52,8 +54,9 @@ struct Estimate {
   double ci_high_kg = 0.0;
   double initial_mass_kg = 0.0;  ///< the static (or empty-mass) prior of the current load
   /// Where initial_mass_kg came from: static_initialised or load_changed (eq. 3 at a
-  /// standstill), no_static_prior (the empty mass: driving began before any standstill),
-  /// restored (a saved state); waiting_for_standstill while there is none.
+  /// standstill), no_static_prior (driving began before any standstill), no_load_sensor (the
+  /// car has no deflection sensor that reads the load), restored (a saved state);
+  /// waiting_for_standstill while there is none.
   StatusReason prior_reason = StatusReason::kWaitingForStandstill;
   long pairs_used = 0;
   EstimateStatus status = EstimateStatus::kInitialising;
@@ -63,9 +66,30 @@ struct Estimate {
 
   bool mass_known = false;  ///< false until a prior exists (static or empty-mass)
 
+  /// Of mass_std_kg, what no amount of driving averages away: the declared accuracy of the
+  /// torque scale and the rolling radius, the accelerometer's pitch. The 95 % interval holds it
+  /// in quadrature with the regression's; the status converges on the regression's part alone.
+  double mass_model_std_kg = 0.0;
+  /// False when the regression left the plausible band [plausible_low_kg, plausible_high_kg]
+  /// (below the empty mass or above the maximum permissible mass, with margins): mass_kg and
+  /// the interval then hold the last plausible estimate and implausible_mass_kg says where the
+  /// regression went.
+  bool plausible = true;
+  double implausible_mass_kg = 0.0;
+  double plausible_low_kg = 0.0;
+  double plausible_high_kg = 0.0;
+  /// The longitudinal block's identified delay of a_x behind the force (-1: not yet) and its
+  /// measured noise (-1: not yet).
+  double driveline_lag_s = -1.0;
+  double accel_noise_std_mps2 = -1.0;
+  double force_noise_std_n = -1.0;
+
   bool has_mass() const { return mass_known; }
   /// Human-readable reason, e.g. "inputs invalid: speed, yaw_rate" (allocates; not for hot paths).
   std::string describe_reason() const;
+  /// Why the regression's mass was refused, e.g. "12000 kg above the plausible band (up to
+  /// 3615 kg)" (allocates; not for hot paths).
+  std::string describe_rejection() const;
 };
 
 }  // namespace vmass

@@ -26,6 +26,10 @@ enum class PairVerdict : std::uint8_t {
   kGearChange,         ///< gear changed inside the differencing window
   kNonFinite,          ///< NaN or infinite values
   kInnovation,         ///< rejected by the supervisor's innovation gate
+  kSettling,           ///< clean, but not yet for a whole window and its settle time
+  kNotClean,           ///< braking, shifting or too slow inside the window
+  kImplausible,        ///< the mass the pair implies lies outside the plausible band
+  kAwaitingLag,        ///< kept until the driveline lag is identified (released later)
   kCount
 };
 
@@ -41,8 +45,8 @@ struct Extraction {
 /// simulation, 0.2 s on CAN data) and the optional low-pass applied before differencing.
 struct DifferencingParams {
   double tick_rate_hz = 100.0;
-  double differencing_dt_s = 0.02;
-  double filter_cutoff_hz = 0.0;
+  double differencing_dt_s = 0.4;
+  double filter_cutoff_hz = 1.0;
 
   /// dt in ticks (>= 1).
   int steps() const;

@@ -27,7 +27,7 @@
 namespace vmass {
 
 struct LateralParams {
-  bool enabled = true;
+  bool enabled = false;  // off by default: see docs/estimator.md (population suite)
   double max_abs_accel_y_mps2 = 4.0;
   double min_abs_delta_accel_y_mps2 = 0.01;
   double max_abs_accel_x_mps2 = 0.3;

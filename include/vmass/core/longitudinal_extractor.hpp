@@ -1,38 +1,76 @@
-// LongitudinalExtractor: longitudinal regression pairs (paper eqs. 4-7, Table II).
+// LongitudinalExtractor: longitudinal regression pairs (paper eqs. 4-7, Table II), made to hold
+// on a car it was not tuned for.
 //
-//   F   = C_wheel / r_wheel - P_brake K_brake                      eqs. (6), (7)
-//   M da_x = dF   over a step dt (resistive forces cancel)          eq. (5)
-// The wheel torque also accelerates the rotating parts, so the differenced relation holds for
-// M + m_rot (m_rot = J / r^2, from config, per gear when known). The pair therefore is
-//   y = dF - m_rot da_x,   phi = [da_x, 1]
-// so that theta[0] is the vehicle mass M.
+//   F   = C_wheel / r_wheel - 0.5 rho C_d A v^2           eqs. (6), (4) with the nominal aero
+//   M da_x = dF - m_rot dv'                                  eq. (5); a_x the accelerometer,
+//                                                            v' the wheel-speed derivative
+// so the pair is  y = dF - m_rot(gear) dv',  phi = [da_x, 1]  and theta[0] is the mass M.
+// The accelerometer reads specific force, so the grade cancels exactly in M a_x = F - resistances;
+// the rotating parts turn with the wheels, so their inertia multiplies the wheel-speed
+// derivative, not a_x.
 //
-// Gates (Table II, thresholds from config): |a_y| < max_abs_accel_y_mps2 at both ends,
-// |da_x| > min_abs_delta_accel_x_mps2, |dF| > min_abs_delta_force_n; and, beyond the paper,
-// speed >= min_speed_mps (the brake force model fails at standstill), no gear change inside
-// the window, inputs valid and finite, and samples exactly dt apart.
+// What makes the differenced model hold on real signals:
+//   - the same low-pass (estimator.filter_cutoff_hz) on F, a_x and v' before differencing over
+//     estimator.differencing_dt_s: the driveline's torsional mode, the accelerometer's
+//     vibration and the bus's quantisation lie above it, and M da = dF still holds between
+//     filtered signals;
+//   - the force is taken at the lag the LagEstimator identifies (the lag at which the pairs fit
+//     best), so that it is paired with the acceleration of the same instant; the excited pairs
+//     seen before the lag is identified are kept (verdict awaiting_lag) and released, at the
+//     identified lag, through pop_released() once it is: no pair enters misaligned;
+//   - excitation gates relative to the measured noise: |dF| and M_ref |da| above
+//     min_excitation_sigma times the robust scale of the residual dF - M_ref da (measured on
+//     every clean tick, M_ref the prior's mass: it does not follow the estimate), with floors;
+//   - a pair is taken only when the whole window (and settle_s before it) was clean: no brake
+//     (the brake gain is the least known; use_braking allows braking pairs), no gear change and
+//     a valid gear, speed above min_speed_mps, |a_y| small;
+//   - an outlier gate that cannot lock in: the mass the pair implies, y / da, must lie in the
+//     plausible band [0.5 empty, 1.5 maximum permissible] (2.5 empty without a maximum).
+// Without a brake-pressure signal the brake-light switch decides; with neither, the block needs
+// use_braking = false and takes no pair while the torque is negative or small (it cannot tell).
 //
-// Signals are low-pass filtered identically before differencing (see LowPassFilter).
 // Not thread-safe; allocates only in the constructor.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
+#include "vmass/core/delay_line.hpp"
 #include "vmass/core/differencing_history.hpp"
 #include "vmass/core/extraction.hpp"
+#include "vmass/core/lag_estimator.hpp"
 #include "vmass/core/low_pass_filter.hpp"
 #include "vmass/core/sample.hpp"
 #include "vmass/core/vehicle_params.hpp"
 
 namespace vmass {
 
+/// What the pair's acceleration change is measured with (see the header).
+enum class AccelSource : std::uint8_t {
+  kAccelerometer = 0,  ///< a_x: the grade cancels exactly; body pitch scales it by 1 + g k_pitch
+  kWheelSpeed,         ///< the derivative of the wheel speed: no pitch; the ESC's radius error
+  kCalibrated,         ///< a_x divided by its scale against the wheel speed, learned online
+};
+std::string_view accel_source_name(AccelSource s);
+
 struct LongitudinalParams {
   bool enabled = true;
-  double max_abs_accel_y_mps2 = 0.2;
-  double min_abs_delta_accel_x_mps2 = 0.01;
-  double min_abs_delta_force_n = 10.0;
-  double min_speed_mps = 1.0;
+  AccelSource accel_source = AccelSource::kAccelerometer;
+  double scale_memory_s = 120.0;  ///< kCalibrated: memory of the scale, s of excited pairs
+  double max_abs_accel_y_mps2 = 0.5;
+  double min_abs_delta_accel_x_mps2 = 0.02;  ///< floor of the excitation gate
+  double min_abs_delta_force_n = 10.0;       ///< floor of the excitation gate
+  double min_excitation_sigma = 3.0;
+  double min_speed_mps = 2.0;
+  double settle_s = 0.5;  ///< clean time before a window, after a brake or shift
+  bool use_braking = false;
+  double brake_applied_weight_fraction = 0.02;  ///< brakes count as applied above this K P / (M g)
+  double noise_memory_s = 30.0;
+  bool subtract_aero = true;
   double weight = 1.0;
+  LagParams lag;
 
   std::string validate() const;
 };
@@ -43,28 +81,98 @@ class LongitudinalExtractor {
                         const DifferencingParams& differencing);
 
   Extraction step(const Sample& sample);
+  /// Pairs kept while the lag was unknown, one per call, at the identified lag (gated as in
+  /// step()); false when none is left. Call after each step().
+  bool pop_released(Extraction* out);
+  /// Forget the signal history (a hole, a restart); the identified lag and the noise are kept.
   void reset();
+  /// The mass the noise scale and the gates use (the prior's; never the running estimate).
+  void set_reference_mass(double mass_kg) { reference_mass_kg_ = mass_kg; }
 
-  /// Inputs this block needs.
-  static constexpr InputMask kRequired =
-      input_bit(Input::kWheelTorque) | input_bit(Input::kBrakePressure) |
-      input_bit(Input::kAccelX) | input_bit(Input::kAccelY) | input_bit(Input::kSpeed);
+  const LagEstimator& lag() const { return lag_; }
+  /// kCalibrated: the accelerometer's scale against the wheel speed, 1 + kappa (1 otherwise).
+  double accel_scale() const;
+  /// Robust scale of the residual dF - M_ref da at the horizon, N.
+  double force_noise_n() const { return residual_scale_n_ * kScalePerMeanAbs; }
+  /// The same in acceleration, force_noise_n() / M_ref, m/s^2.
+  double accel_noise_mps2() const { return force_noise_n() / reference_mass_kg_; }
+
+  /// Inputs this block needs: a_x, speed and the wheel torque, or, on a car whose driveline
+  /// ratios are configured, the engine torque and the gear (the engine speed, when present,
+  /// detects a slipping converter or clutch). Brake pressure or the brake switch decide the
+  /// brake state when present.
+  InputMask required_inputs() const { return required_; }
 
  private:
+  static constexpr double kScalePerMeanAbs = 1.2533;  ///< sigma / E|r| of a normal residual
+
   struct Record {
     TimeUs time_us;
     double accel_x_mps2;
+    double wheel_accel_mps2;
     double accel_y_mps2;
     double force_n;
-    double speed_mps;
     int gear;
-    bool gear_valid;
   };
+  struct TickInputs {
+    double force_n = 0.0;
+    bool clean = false;  ///< no brake, valid gear, fast enough
+  };
+
+  bool read(const Sample& s, TickInputs* in);
+  /// C_wheel from the wheel torque, or from the engine torque through the gear; NaN if neither.
+  double wheel_torque_nm(const Sample& s) const;
+  /// The engine turns faster or slower than the wheels through the gear (converter, clutch).
+  bool driveline_slips(const Sample& s) const;
+  bool braking(const Sample& s);
+  Record filtered_record(const Sample& s, double force_n);
+  void update_noise(double residual_n);
+  /// The pair's acceleration change from the configured source.
+  double delta_accel(const Record& now, const Record& then) const;
+  void update_scale(const Record& now, const Record& then);
+  /// y at every candidate lag into y_by_lag_ (the filtered force L ticks earlier).
+  void fill_y_by_lag(const Record& now, const Record& then);
+  Extraction gate(const Record& now, const Record& then, Extraction out);
+  /// The force and plausibility gates of a pair at the identified lag.
+  Extraction finish(TimeUs time_us, double delta_accel, const double* y_by_lag, double noise_n,
+                    double pair_noise_n, Extraction out) const;
+  double pair_noise_n(const Record& now, const Record& then) const;
+  void keep_pending(TimeUs time_us, double delta_accel, double noise_n, double pair_noise_n);
 
   VehicleParams vehicle_;
   LongitudinalParams params_;
-  LowPassFilter accel_x_filter_, accel_y_filter_, force_filter_;
+  InputMask required_;
+  double tick_rate_hz_;
+  LowPassFilter accel_x_filter_, accel_y_filter_, force_filter_, speed_filter_, brake_filter_;
   DifferencingHistory<Record> history_;
+  DelayLine<double> filtered_force_;  ///< the last max_lag + window ticks of filtered force
+  LagEstimator lag_;
+  std::vector<double> y_by_lag_;
+  // Pairs awaiting the lag: a ring of (time, da, noise) and their y at every lag.
+  struct Pending {
+    TimeUs time_us;
+    double delta_accel_mps2;
+    double noise_n;
+    double pair_noise_n;
+  };
+  std::vector<Pending> pending_;
+  std::vector<double> pending_y_;  ///< pending_.size() x y_by_lag_.size()
+  std::size_t pending_count_ = 0;
+  std::size_t pending_next_ = 0;  ///< next to release
+  double reference_mass_kg_;
+  double residual_scale_n_;
+  double noise_forget_;
+  double scale_forget_;
+  double pitch_scale_;       ///< 1 + g k_pitch: the accelerometer's over-read of da from body pitch
+  double scale_s_vv_ = 0.0;  ///< kCalibrated: sum of dv'^2
+  double scale_s_dv_ = 0.0;  ///< ... and of (da_x - dv') dv'
+  long scale_pairs_ = 0;
+  double previous_speed_ = 0.0;
+  bool has_previous_speed_ = false;
+  int previous_gear_ = 0;
+  long clean_ticks_ = 0;
+  long window_ticks_;
+  long settle_ticks_;
 };
 
 }  // namespace vmass

@@ -1,6 +1,7 @@
 // Pipeline: the whole estimator of the paper (Fig. 3) on a stream of Samples.
 //
 //   Sample -> StaticInitializer (eq. 3, load changes)    -> prior of the regressor
+//          (no sensor reading the load: the no-static prior, and LoadChangeMonitor)
 //          -> LongitudinalExtractor (eqs. 4-7, Table II)  -> Supervisor (eq. 13, innovation
 //          -> LateralExtractor (eqs. 8-12, Table III)     -> gate) -> RlsEstimator | BayesEstimator
 //          -> Estimate
@@ -29,6 +30,7 @@
 #include "vmass/core/estimate.hpp"
 #include "vmass/core/extraction.hpp"
 #include "vmass/core/lateral_extractor.hpp"
+#include "vmass/core/load_change_monitor.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
 #include "vmass/core/rls_estimator.hpp"
 #include "vmass/core/static_initializer.hpp"
@@ -44,6 +46,7 @@ struct EstimatorParams {
   RegressorType type = RegressorType::kBayes;
   DifferencingParams differencing;
   StaticInitParams static_init;
+  LoadChangeParams load_change;
   LongitudinalParams longitudinal;
   LateralParams lateral;
   SupervisorParams supervisor;
@@ -114,6 +117,8 @@ class Pipeline {
   bool flush();
   const Estimate& estimate() const { return estimate_; }
   const MassRegressor& regressor() const { return *regressor_; }
+  /// The longitudinal block (its identified lag and measured noise, for the status).
+  const LongitudinalExtractor& longitudinal() const { return longitudinal_; }
   const PipelineParams& params() const { return params_; }
 
   /// The current state, for persistence. Allocates nothing.
@@ -127,12 +132,21 @@ class Pipeline {
 
  private:
   void restart(const MassPrior& prior, StatusReason reason);
+  /// The load-change monitor's challenger becomes the belief (a load change seen in motion).
+  void adopt_challenger();
+  /// Offer the tick's extractions to the supervisor (and the load-change monitor).
+  void offer_pairs(const Sample& sample, StepResult* result);
   void refresh_estimate(const Sample& sample);
   /// The estimate's belief and status from the regressor (inputs as of the last step).
   void refresh_belief();
+  /// The regression's state into estimate_, with the model error and the plausibility check.
+  void publish_state(const RegressorState& state);
+  /// mass_model_std_kg for a mass (see Estimate).
+  double model_std_kg(double mass_kg) const;
 
   PipelineParams params_;
   StaticInitializer static_init_;
+  LoadChangeMonitor load_monitor_;
   LongitudinalExtractor longitudinal_;
   LateralExtractor lateral_;
   Supervisor supervisor_;
@@ -141,6 +155,7 @@ class Pipeline {
   MassRegressor* regressor_;
   double pair_information_;  ///< RegressionPair::information of every extracted pair
   bool has_prior_ = false;
+  bool has_plausible_ = false;  ///< an estimate of the current load was plausible
   StatusReason prior_reason_ = StatusReason::kWaitingForStandstill;
   MassPrior prior_;
   bool has_reference_ = false;

@@ -33,6 +33,17 @@ struct RegressionPair {
   double delta_accel_mps2 = 0.0;  ///< phi[0], differenced acceleration, m/s^2
   double weight = 1.0;            ///< relative precision, > 0
   double information = 1.0;       ///< independent observations this pair is worth, in (0, 1]
+  /// The pair's own noise std, as its extractor measures it, N; 0: the regressor's configured
+  /// noise applies. With it, a regressor whose noise is s weighs the pair as weight * (s / it)^2.
+  double noise_std_n = 0.0;
 };
+
+/// The pair's weight relative to a regressor whose noise std is reference_noise_n (see
+/// RegressionPair::noise_std_n).
+inline double relative_weight(const RegressionPair& pair, double reference_noise_n) {
+  if (!(pair.noise_std_n > 0.0)) return pair.weight;
+  const double ratio = reference_noise_n / pair.noise_std_n;
+  return pair.weight * ratio * ratio;
+}
 
 }  // namespace vmass

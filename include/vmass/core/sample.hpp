@@ -27,6 +27,9 @@ enum class Input : std::uint8_t {
   kSteeringWheelAngle,   ///< steering-wheel angle, rad
   kRearRightDeflection,  ///< rear-right suspension deflection, m (compression positive)
   kGear,                 ///< engaged gear (1..N, 0 neutral, -1 reverse); optional input
+  kBrakeSwitch,          ///< brake-light switch (1 pressed), where no pressure is on the bus
+  kEngineTorque,         ///< engine (or motor) torque, N*m, where no wheel torque is on the bus
+  kEngineSpeed,          ///< engine (or motor) speed, rad/s (converter slip)
   kCount
 };
 
@@ -52,6 +55,9 @@ struct Sample {
   double steering_wheel_angle_rad = 0.0;
   double rear_right_deflection_m = 0.0;
   int gear = 0;
+  bool brake_switch = false;
+  double engine_torque_nm = 0.0;
+  double engine_speed_radps = 0.0;
   InputMask valid = 0;
 
   bool has(Input in) const { return (valid & input_bit(in)) != 0; }

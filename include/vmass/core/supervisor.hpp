@@ -1,13 +1,19 @@
-// Supervisor: decides which extracted pairs reach the regressor (paper Fig. 3, eq. 13).
+// Supervisor: decides which extracted pairs reach the regressor, and with what weight (paper
+// Fig. 3, eq. 13).
 //
-// The extractors apply the activation conditions C1 (Table II) and C2 (Table III); the
-// supervisor adds an innovation gate against outliers that the gates let through (gear shifts,
-// torque steps the wheel-torque signal models badly, kerbs):
-//   nu = y - phi theta_hat,  S = predicted variance of y (regressor's belief + noise)
-//   accept when nu^2 <= g^2 S            (g = innovation_gate_sigma)
-// The gate is open (everything accepted) for the first min_pairs_before_gating pairs after a
-// (re)start, while the belief is still the wide prior, and after max_consecutive_rejections
-// rejections in a row one pair is let through, so that a wrong belief cannot lock itself in.
+// The extractors apply the activation conditions C1 (Table II) and C2 (Table III) and an
+// outlier gate that does not depend on the estimate (the mass a pair implies must be
+// plausible). The supervisor then weighs each pair by how well the current belief predicts it,
+// a Huber M-estimator:
+//   nu = y - phi theta_hat,  S = predicted variance of y (the belief's spread and the pair's
+//   measured noise),  t = |nu| / sqrt(S)
+//   weight x min(1, huber_k / t)
+// so that a pair the belief cannot explain (an A/C compressor switching, a kerb, a shift the
+// gates missed) counts less, without ever being thrown away: a drifted belief still feels the
+// informative pairs that contradict it, and cannot lock itself in. A hard gate remains for the
+// absurd (t > innovation_gate_sigma, default 20): rejected, except after
+// max_consecutive_rejections in a row. Both act only after min_pairs_before_gating pairs since
+// a (re)start, while the belief is still the wide prior.
 //
 // It also counts, per block, the ticks, the candidates, the accepted pairs and the innovation
 // rejections: availability = accepted / ticks.
@@ -24,7 +30,8 @@
 namespace vmass {
 
 struct SupervisorParams {
-  double innovation_gate_sigma = 4.0;
+  double innovation_gate_sigma = 20.0;
+  double huber_k = 2.5;  ///< 0: no down-weighting
   int min_pairs_before_gating = 30;
   int max_consecutive_rejections = 50;
 
@@ -59,6 +66,10 @@ class Supervisor {
   /// `*estimate_changed` is set when the regressor's published state changed.
   PairEvent offer(Block block, const Extraction& extraction, MassRegressor& regressor,
                   bool* estimate_changed);
+  /// A pair released later than its tick (the lag had to be identified first): counted as a
+  /// candidate and accepted or rejected like any other, but not as a tick of its own.
+  PairEvent offer_late(Block block, const Extraction& extraction, MassRegressor& regressor,
+                       bool* estimate_changed);
 
   /// The regressor was reset (new prior): the gate opens again.
   void on_regressor_reset();

@@ -33,17 +33,50 @@ struct VehicleParams {
   double air_density_kg_per_m3 = 1.2;
   double rolling_resistance_coeff = 0.0;  ///< f_r
   /// Declared accuracy (bound of the relative error) of the wheel-torque signal's scale and of
-  /// wheel_radius_m: only the mass scaled by them is observable from traction pairs.
-  double wheel_torque_accuracy_fraction = 0.0;
-  double wheel_radius_accuracy_fraction = 0.0;
+  /// wheel_radius_m: only the mass scaled by them is observable from traction pairs. The
+  /// defaults are typical (an ECU's torque signal within 5 %, a dynamic radius within 2 %); 0
+  /// declares it exact. They widen the 95 % interval (Estimate::mass_model_std_kg).
+  double wheel_torque_accuracy_fraction = 0.05;
+  double wheel_radius_accuracy_fraction = 0.02;
+  /// Body pitch per longitudinal acceleration (a kinematics-and-compliance value): a body-fixed
+  /// accelerometer tilts with the body and reads changes of a_x (1 + g k) too large, 1.7 % per
+  /// deg/g. Unknown on most cars: the default is typical of passenger cars, and the estimator's
+  /// interval carries its uncertainty (pitch_gradient_std_deg_per_g).
+  double pitch_gradient_deg_per_g = 1.0;
+  double pitch_gradient_std_deg_per_g = 0.5;
+  /// Relative uncertainty of rotating_mass_kg / rotating_mass_by_gear_kg (inertias from a
+  /// datasheet are rarely better than this): pairs whose rotating-mass term is large (low
+  /// gears, an unlocked converter) count less.
+  double rotating_mass_accuracy_fraction = 0.3;
+  /// The driveline, for a car that reports engine torque only (not wheel torque):
+  ///   C_wheel = T_engine i_gear i_final eta    (T_engine / eta when the engine is dragged)
+  /// Empty gear_ratios or final_drive_ratio 0: unknown (wheel torque is then required).
+  std::vector<double> gear_ratios;  ///< index gear - 1
+  double final_drive_ratio = 0.0;
+  double driveline_efficiency = 0.92;
+  /// Above this relative difference between the engine speed and the wheel speed through the
+  /// gear, a torque converter or clutch slips and the engine torque does not reach the wheels
+  /// by the ratios: such ticks are not clean.
+  double max_driveline_slip_fraction = 0.05;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
   /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.
   double rotating_mass_for_gear(int gear, bool gear_valid) const;
+  /// Gear ratios and the final drive are known: wheel torque can come from engine torque.
+  bool knows_driveline() const { return final_drive_ratio > 0.0 && !gear_ratios.empty(); }
+  /// i_gear i_final for a forward gear; 0 when the gear is not one of gear_ratios.
+  double overall_ratio(int gear) const;
+  /// Wheel torque from engine torque in a forward gear (see above); NaN when unknown.
+  double wheel_torque_from_engine_nm(double engine_torque_nm, int gear) const;
   std::string validate() const;
 };
 
 struct SuspensionParams {
+  /// A rear(-right) deflection sensor is configured (the config has a suspension section).
+  bool has_sensor = true;
+  /// The rear axle is self-levelling (air suspension): the ride height carries no load, so the
+  /// sensor gives no static mass and the estimator starts from the no-static prior.
+  bool levelled = false;
   double stiffness_n_per_m = 0.0;                                       ///< c_Brr
   double empty_deflection_m = 0.0;                                      ///< z0
   double progressive_knee_m = std::numeric_limits<double>::infinity();  ///< z_knee
@@ -54,6 +87,8 @@ struct SuspensionParams {
   /// Rear-right wheel force above the empty state for a sensor reading z, N.
   double wheel_force_n(double deflection_m) const;
   bool is_progressive() const { return progressive_rate_n_per_m2 > 0.0; }
+  /// Eq. (3) applies: a sensor whose reading carries the load.
+  bool carries_load() const { return has_sensor && !levelled; }
   std::string validate() const;
 };
 

@@ -4,6 +4,7 @@
 //
 //   reading thread:    FrameSource ──CanFrame──▶ InputRecord ──SpscQueue──▶
 //   estimator thread:  SignalTable::on_frame(frame, record time) ... SignalTable::sample_at(T_k)
+//                      ──▶ InputPlausibility::check (the mapping's can.plausibility)
 //
 // The SignalTable lives on the estimator thread only (apply/sample_at/input_age_us), so its
 // values, ages and counters need no locking; the status counters decoded / unknown / bus_errors
@@ -11,7 +12,7 @@
 // frames to the reader's corrupt records. A frame is decoded at the record's time (the log time
 // of a recording; a live bus's frames are re-stamped into the daemon's tick clock by the reading
 // thread), which is what makes `vmassd --replay LOG --speed max` and `vmass-replay --log LOG`
-// identical.
+// identical. A recording's frames pass a ClockGuard first (reorder window, bounded jumps).
 //
 // Thread-safety: as InputSource.
 #pragma once
@@ -21,8 +22,10 @@
 #include <string>
 
 #include "vmass/can/decoder.hpp"
+#include "vmass/runtime/clock_guard.hpp"
 #include "vmass/runtime/frame_source.hpp"
 #include "vmass/runtime/input_source.hpp"
+#include "vmass/signals/input_plausibility.hpp"
 #include "vmass/signals/signal_table.hpp"
 
 namespace vmass::runtime {
@@ -39,24 +42,36 @@ class CanInputSource final : public InputSource {
   void copy_record(InputRecord* record) const override;
 
   void apply(const InputRecord& record) override;
-  Sample sample_at(TimeUs tick_us) override { return table_.sample_at(tick_us); }
+  /// The table's Sample, through the inputs' plausibility checks.
+  Sample sample_at(TimeUs tick_us) override;
   TimeUs input_age_us(Input input, TimeUs tick_us) const override {
     return table_.age_us(input, tick_us);
   }
   std::string input_report() const override;
+  void health_record(InputHealthRecord* out) const override;
+  std::string message_name(int message) const override;
 
+  std::string read_error() const override;
   bool recorded() const override { return frames_->recorded(); }
   std::string describe() const override { return frames_->describe(); }
 
-  /// The table (estimator thread).
+  /// The table and the plausibility checks (estimator thread).
   const signals::SignalTable& table() const { return table_; }
+  const signals::InputPlausibility& plausibility() const { return plausibility_; }
 
  private:
   void sync_counters();
+  /// One frame from the FrameSource, counted.
+  Read read_frame(can::CanFrame* frame, int timeout_ms);
 
   std::unique_ptr<FrameSource> frames_;
   signals::SignalTable table_;
-  can::CanFrame frame_;  ///< reading thread
+  signals::InputPlausibility plausibility_;
+  // Reading thread:
+  can::CanFrame frame_;
+  bool guarded_;  ///< a recording: its frames go through the clock guard
+  ClockGuard<can::CanFrame> guard_;
+  bool ended_ = false;
 };
 
 }  // namespace vmass::runtime

@@ -1,5 +1,6 @@
 // CandumpFrameSource: the frames of a candump -l log (can-utils), stamped with the log's times.
-// Corrupt lines are counted as malformed, reported through on_error and skipped.
+// Corrupt lines are counted as malformed, reported through on_error and skipped; a read error
+// ends the log with problem() saying so (never a silent end of file).
 //
 // Thread-safety: one reading thread.
 #pragma once
@@ -25,7 +26,8 @@ class CandumpFrameSource final : public FrameSource {
   Read read(can::CanFrame* frame, int timeout_ms) override;
   bool recorded() const override { return true; }
   std::string describe() const override { return "replay:" + path_; }
-  std::string problem() const override { return problem_; }
+  /// The log's read error ("path: read error: ..."), "" while it reads fine.
+  std::string problem() const override { return reader_->read_error(); }
   /// Called for each corrupt line (message "path:line: ..."), which is then skipped.
   void on_error(std::function<void(const can::CandumpError&)> callback) {
     reader_->on_error(std::move(callback));
@@ -40,7 +42,6 @@ class CandumpFrameSource final : public FrameSource {
   std::string path_;
   std::unique_ptr<std::istream> in_;
   std::unique_ptr<can::CandumpReader> reader_;
-  std::string problem_;
 };
 
 }  // namespace vmass::runtime

@@ -2,9 +2,10 @@
 // through a SignalTable, a samples CSV), in two halves that the daemon gives to two threads:
 //
 //   reading half      next_record() reads the next record and says when it describes (input
-//                     clock: log time for recordings, the tick clock for a live bus);
-//                     copy_record() copies it into an InputRecord, which the daemon hands to its
-//                     estimator thread through an SPSC queue (so it can pace a recording)
+//                     clock: log time for recordings, in time order and with bounded jumps (a
+//                     ClockGuard), the tick clock for a live bus); copy_record() copies it into
+//                     an InputRecord, which the daemon hands to its estimator thread through an
+//                     SPSC queue (so it can pace a recording)
 //   table half        apply() folds records into the source's input table; at each tick
 //                     sample_at(T) turns the table into the tick's Sample and input_age_us()
 //                     says how old each input is
@@ -38,6 +39,8 @@
 
 #include "vmass/can/can_frame.hpp"
 #include "vmass/core/sample.hpp"
+#include "vmass/runtime/clock_guard.hpp"
+#include "vmass/runtime/input_health.hpp"
 #include "vmass/runtime/seqlock.hpp"
 
 namespace vmass::runtime {
@@ -56,11 +59,12 @@ struct InputRecord {
 /// Latest value, time and validity of every input of a samples CSV (trivially copyable).
 struct InputValues {
   Sample latest;  ///< values and validity bits of the latest update of each input
-  TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1, -1, -1, -1};  ///< -1: never
+  TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1,
+                                       -1, -1, -1, -1, -1, -1};  ///< -1: never
   TimeUs last_update_us = -1;  ///< time of the latest record applied (input clock)
   std::uint64_t updates = 0;   ///< records applied
 };
-static_assert(kInputCount == 9, "update InputValues::input_time_us's initialiser");
+static_assert(kInputCount == 12, "update InputValues::input_time_us's initialiser");
 
 /// Per-input timeouts (microseconds) of a samples CSV.
 struct InputTimeouts {
@@ -82,6 +86,10 @@ struct SourceCounters {
   std::atomic<std::int64_t> dropped{0};     ///< frames dropped by the kernel (SO_RXQ_OVFL)
   std::atomic<std::int64_t> bus_errors{0};  ///< CAN error frames
   std::atomic<std::int64_t> reopens{0};     ///< successful re-opens after the input was lost
+  // A recording's clock (ClockGuard; reading thread).
+  std::atomic<std::int64_t> reordered{0};     ///< records put back in time order
+  std::atomic<std::int64_t> late_dropped{0};  ///< records too late for the reorder window
+  std::atomic<std::int64_t> time_jumps{0};    ///< clock jumps re-based, stray stamps dropped
 };
 
 enum class SourceState : std::uint8_t {
@@ -126,12 +134,20 @@ class InputSource {
   /// Per-input problems seen so far ("speed 2 stale, 1 invalid; ..."), "" when none. Allocates:
   /// for the end of a run (after the estimator thread stopped).
   virtual std::string input_report() const { return ""; }
+  /// The inputs' health at the latest tick (counts, verdicts, CAN messages). Allocates nothing.
+  virtual void health_record(InputHealthRecord* /*out*/) const {}
+
+  // ---------------------------------------------------------------- once reading stopped
+  /// Why a recording ended early ("path: read error: ..."), "" after a clean end.
+  virtual std::string read_error() const { return ""; }
 
   // ---------------------------------------------------------------- any thread
   /// A recording (paced by its own time stamps) rather than a live bus.
   virtual bool recorded() const = 0;
   /// E.g. "samples:drive.csv", "replay:drive.log", "socketcan:can0".
   virtual std::string describe() const = 0;
+  /// The name of a CAN message of InputHealthRecord::MessageEntry ("" for other sources).
+  virtual std::string message_name(int /*message*/) const { return ""; }
 
   const SourceCounters& counters() const { return counters_; }
   SourceHealth health() const { return health_.read(); }
@@ -139,6 +155,7 @@ class InputSource {
  protected:
   /// Reading thread only.
   void set_health(SourceState state, const std::string& detail);
+  void publish_clock_counters(const ClockCounters& c);
 
   SourceCounters counters_;
 

@@ -10,7 +10,9 @@
 // Every format reports the way the candump reader does: a line (record) that cannot be read
 // is counted in stats().corrupt, reported through on_error as "path:line N: why" (binary:
 // "path:record N: why") and skipped; a log is never refused for its content, only when it
-// cannot be opened or its format is not one of these.
+// cannot be opened (a directory or a device is refused, vmass/io/regular_file.hpp) or its
+// format is not one of these. Text lines are bounded and a read error is problem(), never the
+// end of the log (TextLogFrameSource); on a pipe the format is found from the first line.
 //
 // Thread-safety: one reading thread.
 #pragma once

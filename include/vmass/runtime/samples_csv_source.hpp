@@ -4,6 +4,7 @@
 //
 // Its input table is an InputValues (the latest row, per-input times) with sample_at() of
 // input_source.hpp: inputs older than timeout_s are stale.
+// Rows pass a ClockGuard (reorder window, bounded jumps) before they are records.
 // Counters: received = rows read, decoded = good rows, malformed = rows skipped as malformed.
 // Reading allocates (CSV parsing); it runs on the reading thread, never the estimator's.
 // Thread-safety: as InputSource.
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "vmass/csv/samples_csv.hpp"
+#include "vmass/runtime/clock_guard.hpp"
 #include "vmass/runtime/input_source.hpp"
 
 namespace vmass::runtime {
@@ -32,6 +34,7 @@ class SamplesCsvSource final : public InputSource {
   Sample sample_at(TimeUs tick_us) override;
   TimeUs input_age_us(Input input, TimeUs tick_us) const override;
 
+  std::string read_error() const override { return reader_.read_error(); }
   bool recorded() const override { return true; }
   std::string describe() const override { return "samples:" + path_; }
 
@@ -47,7 +50,9 @@ class SamplesCsvSource final : public InputSource {
   std::string path_;
   SamplesCsvReader reader_;
   InputTimeouts timeouts_;
-  Sample record_;       ///< reading thread
+  Sample record_;  ///< reading thread
+  ClockGuard<Sample> guard_;
+  bool ended_ = false;
   InputValues values_;  ///< estimator thread
 };
 

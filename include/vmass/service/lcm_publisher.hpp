@@ -72,10 +72,7 @@ struct DaemonStatus {
   std::int64_t publish_failures = 0;
   std::int64_t state_saves = 0;
   bool state_restored = false;
-  // Schema 2.
-  double driveline_lag_s = -1.0;       ///< -1: not identified
-  double accel_noise_std_mps2 = -1.0;  ///< -1: not measured yet
-  double force_noise_std_n = -1.0;
+  // Schema 2 (the driveline lag and the noise come from last.estimate).
   std::array<InputHealth, kInputCount> inputs{};
   std::vector<MessageHealth> messages;
   bool bus_valid = true;
@@ -101,6 +98,7 @@ class LcmPublisher {
   bool publish_status(const DaemonStatus& status);
 
   std::int64_t estimates_published() const { return estimates_; }
+  const std::string& url() const { return settings_.url; }
   std::int64_t publish_failures() const { return failures_; }
 
  private:

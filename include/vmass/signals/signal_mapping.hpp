@@ -22,6 +22,9 @@
 //           - {message: EDU_Rear, signal: Torque, gain: 1.0}
 //         offset: 0.0                   # optional, SI, added to the sum
 //         timeout_s: 0.05               # optional, for every term (default: per term's message)
+//     enforce_dbc_ranges: false         # refuse values outside [min|max] (real files lie)
+//     e2e: {...}                        # alive counters and checksums (message_protection.hpp)
+//     plausibility: {...}               # physical checks (plausibility_params.hpp)
 //
 // One term:   si = dbc_physical * unit_scale * gain      (unit_scale from units.hpp)
 // One input:  value = sum over terms of si + offset
@@ -46,6 +49,8 @@
 #include "vmass/can/decoder.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/core/sample.hpp"
+#include "vmass/signals/message_protection.hpp"
+#include "vmass/signals/plausibility_params.hpp"
 
 namespace vmass::signals {
 
@@ -78,6 +83,9 @@ struct InputMapping {
 
 struct SignalMapping {
   std::vector<InputMapping> inputs;  ///< mapped inputs in Input order
+  MessageProtection protection;      ///< can.e2e: alive counters and checksums
+  bool enforce_dbc_ranges = false;   ///< can.enforce_dbc_ranges: refuse values outside [min|max]
+  PlausibilityParams plausibility;   ///< can.plausibility: physical limits, cross-checks
 
   /// The mapping of an input, or nullptr when it is not mapped.
   const InputMapping* find(Input input) const;
@@ -105,8 +113,9 @@ struct CanInputsLoad {
   bool ok() const { return inputs.has_value(); }
 };
 
-/// Reads the config's `can:` section: loads and compiles `can.dbc`, resolves `can.inputs`.
-/// A missing section, an unreadable DBC or a DBC with errors is an error naming can.dbc.
+/// Reads the config's `can:` section: loads and compiles `can.dbc`, resolves `can.inputs`,
+/// `can.e2e`, `can.enforce_dbc_ranges` and `can.plausibility`. A missing section, an unreadable
+/// DBC or a DBC with errors is an error naming can.dbc.
 CanInputsLoad load_can_inputs(const Config& config);
 
 }  // namespace vmass::signals

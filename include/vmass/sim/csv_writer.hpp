@@ -19,7 +19,8 @@ namespace vmass::sim {
 /// Header of samples.csv (docs/formats.md).
 inline constexpr std::string_view kSamplesCsvHeader =
     "time_s,wheel_torque_nm,brake_pressure_pa,accel_x_mps2,accel_y_mps2,yaw_rate_radps,"
-    "speed_mps,steering_wheel_angle_rad,rear_right_deflection_m,gear";
+    "speed_mps,steering_wheel_angle_rad,rear_right_deflection_m,gear,brake_switch,engine_torque_nm,"
+    "engine_speed_radps";
 
 /// Header of truth.csv: time_s,mass_kg,speed_mps,grade_rad,lateral_velocity_mps,
 /// yaw_rate_radps,accel_x_mps2,accel_y_mps2, then the other TruthRow fields.

@@ -79,6 +79,11 @@ struct TrueSignals {
   int gear = 0;
 };
 
+/// What the sensor model measures: the paper's car has wheel torque and brake pressure on its
+/// bus, so no brake switch, engine torque or engine speed (population vehicles get those from
+/// their VehicleBus).
+inline constexpr InputMask kSensorModelInputs = (input_bit(Input::kGear) << 1) - 1;
+
 class SensorModel {
  public:
   SensorModel(const SensorSpec& spec, NoiseSet noise, std::uint64_t seed, double wheel_radius_m);

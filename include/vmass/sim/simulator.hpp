@@ -45,6 +45,7 @@ struct EcuSignals {
   double engine_speed_radps = 0.0;
   int gear = 0;
   double brake_pressure_pa = 0.0;  ///< as the sensor reads it (offset included)
+  bool brake_light = false;        ///< the pedal switch: on from the first bar of true pressure
   double accel_x_mps2 = 0.0;       ///< IMU output
   double accel_y_mps2 = 0.0;
   double yaw_rate_radps = 0.0;

@@ -1,0 +1,74 @@
+// LoadChangeMonitor: detects, from the drive itself, a load change that no deflection sensor saw
+// (a car without one, or with a self-levelling axle).
+//
+// Load changes only at a standstill. After every standstill of at least min_stop_s, a
+// challenger regressor (the same kind as the estimator's) starts from the no-static prior and
+// learns from the pairs that follow, unweighted by the main belief. The main belief keeps
+// everything the earlier drive taught. When the two disagree beyond chance,
+//   |M_challenger - M_main| > decide_sigma sqrt(s_challenger^2 + s_main^2)
+//   and > min_change_fraction M_empty, after min_pairs pairs of the challenger,
+// the load changed at that stop: the challenger's belief becomes the estimate. A later stop
+// restarts the challenger; when nothing changed it simply agrees with the main belief and is
+// dropped at the next stop.
+//
+// Pure: time comes from the samples. Not thread-safe; allocates nothing after construction.
+#pragma once
+
+#include <string>
+
+#include "vmass/core/bayes_estimator.hpp"
+#include "vmass/core/mass_prior.hpp"
+#include "vmass/core/rls_estimator.hpp"
+#include "vmass/core/sample.hpp"
+
+namespace vmass {
+
+struct LoadChangeParams {
+  bool detect_in_motion = true;  ///< used only when the suspension does not read the load
+  double min_stop_s = 5.0;       ///< a standstill this long may have changed the load
+  double decide_sigma = 4.0;
+  double min_change_fraction = 0.03;  ///< of the empty mass
+  long min_pairs = 300;               ///< challenger pairs before it may decide
+
+  std::string validate() const;
+};
+
+class LoadChangeMonitor {
+ public:
+  /// `start_prior`: where a challenger starts (the no-static prior); `use_rls`: the kind of
+  /// the main regressor.
+  LoadChangeMonitor(const LoadChangeParams& params, const RlsParams& rls, const BayesParams& bayes,
+                    bool use_rls, const MassPrior& start_prior, double empty_mass_kg,
+                    double standstill_speed_mps);
+
+  /// Tracks standstills; a long one (re)starts the challenger when driving resumes.
+  void step(const Sample& sample);
+  /// A pair the extractors accepted (before the main belief weighed it).
+  void offer(const RegressionPair& pair);
+  /// True when the challenger now contradicts `main` (see the header); the caller then takes
+  /// challenger() as its belief and calls dismiss().
+  bool contradicts(const RegressorState& main) const;
+  const MassRegressor& challenger() const;
+  const RlsEstimator& challenger_rls() const { return rls_; }
+  const BayesEstimator& challenger_bayes() const { return bayes_; }
+  const MassPrior& start_prior() const { return start_prior_; }
+  bool active() const { return active_; }
+  void dismiss() { active_ = false; }
+
+ private:
+  MassRegressor& regressor();
+
+  LoadChangeParams params_;
+  RlsEstimator rls_;
+  BayesEstimator bayes_;
+  bool use_rls_;
+  MassPrior start_prior_;
+  double empty_mass_kg_;
+  double standstill_speed_mps_;
+  bool standing_ = false;
+  TimeUs standing_since_us_ = 0;
+  bool long_stop_ = false;  ///< the current standstill lasted min_stop_s
+  bool active_ = false;
+};
+
+}  // namespace vmass

@@ -1,0 +1,71 @@
+#include "vmass/core/load_change_monitor.hpp"
+
+#include <cmath>
+
+#include "vmass/core/param_check.hpp"
+
+namespace vmass {
+
+std::string LoadChangeParams::validate() const {
+  ParamCheck c("estimator.load_change");
+  c.non_negative("min_stop_s", min_stop_s);
+  c.positive("decide_sigma", decide_sigma);
+  c.non_negative("min_change_fraction", min_change_fraction);
+  if (min_pairs < 1) c.fail("min_pairs", "must be >= 1");
+  return c.message();
+}
+
+LoadChangeMonitor::LoadChangeMonitor(const LoadChangeParams& params, const RlsParams& rls,
+                                     const BayesParams& bayes, bool use_rls,
+                                     const MassPrior& start_prior, double empty_mass_kg,
+                                     double standstill_speed_mps)
+    : params_(params),
+      rls_(rls),
+      bayes_(bayes),
+      use_rls_(use_rls),
+      start_prior_(start_prior),
+      empty_mass_kg_(empty_mass_kg),
+      standstill_speed_mps_(standstill_speed_mps) {}
+
+MassRegressor& LoadChangeMonitor::regressor() {
+  return use_rls_ ? static_cast<MassRegressor&>(rls_) : static_cast<MassRegressor&>(bayes_);
+}
+
+const MassRegressor& LoadChangeMonitor::challenger() const {
+  return use_rls_ ? static_cast<const MassRegressor&>(rls_)
+                  : static_cast<const MassRegressor&>(bayes_);
+}
+
+void LoadChangeMonitor::step(const Sample& sample) {
+  if (!params_.detect_in_motion || !sample.has(Input::kSpeed)) return;
+  const bool still = std::abs(sample.speed_mps) <= standstill_speed_mps_;
+  if (still) {
+    if (!standing_) {
+      standing_ = true;
+      standing_since_us_ = sample.time_us;
+    }
+    if (to_seconds(sample.time_us - standing_since_us_) >= params_.min_stop_s) long_stop_ = true;
+    return;
+  }
+  standing_ = false;
+  if (long_stop_) {  // driving again after a stop that may have changed the load
+    long_stop_ = false;
+    regressor().reset(start_prior_);
+    active_ = true;
+  }
+}
+
+void LoadChangeMonitor::offer(const RegressionPair& pair) {
+  if (active_) regressor().update(pair);
+}
+
+bool LoadChangeMonitor::contradicts(const RegressorState& main) const {
+  if (!active_) return false;
+  const RegressorState c = challenger().state();
+  if (c.pairs_used < params_.min_pairs) return false;
+  const double difference = std::abs(c.mass_kg - main.mass_kg);
+  return difference > params_.min_change_fraction * empty_mass_kg_ &&
+         difference > params_.decide_sigma * std::hypot(c.mass_std_kg, main.mass_std_kg);
+}
+
+}  // namespace vmass
