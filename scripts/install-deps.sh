@@ -14,6 +14,8 @@ packages=(
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
   # plotting (tools/vmass-plot) and Python test oracles
   python3 python3-matplotlib python3-venv python3-yaml
+  # man pages (help2man from --help) and the .deb (CPack runs dpkg-shlibdeps, dpkg-deb)
+  help2man dpkg-dev
   # network namespaces and SocketCAN user space for integration tests
   iproute2 can-utils util-linux
 )

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Makes the Python virtual environment the test oracles and benchmarks use (build/pyenv) and
-# installs their packages into it: cantools (the independent DBC decoder the CAN layer is checked
-# against). Idempotent: an existing venv is reused, and pip is not run when every package is
+# Makes the Python virtual environment the test oracles, benchmarks and the log converter use
+# (build/pyenv) and installs their packages into it: cantools (the independent DBC decoder the
+# CAN layer is checked against), python-can and asammdf (vmass-log-convert reads BLF and MDF4
+# with them; the tests write ASC, TRC, BLF and MDF4 with them), lcm (the Python LCM bindings
+# the Python subscriber test uses; Debian 12 has no python3-lcm). Idempotent: an existing venv is reused, and pip is not run when every package is
 # already importable. Needs /usr/bin/python3 with the venv module (Debian: python3-venv).
 #
 #   scripts/install-python-deps.sh [VENV_DIR]     (default: <repo>/build/pyenv)
@@ -10,8 +12,8 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 venv=${1:-$repo/build/pyenv}
 python=/usr/bin/python3
-packages=(cantools)
-modules=(cantools)
+packages=(cantools python-can asammdf lcm)
+modules=(cantools can asammdf lcm)
 
 if [ ! -x "$venv/bin/python" ]; then
   echo "install-python-deps: creating $venv"
@@ -30,4 +32,5 @@ fi
 
 echo "install-python-deps: installing ${packages[*]} into $venv"
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "${packages[@]}"
-"$venv/bin/python" -c "import cantools; print('install-python-deps: cantools', cantools.__version__)"
+"$venv/bin/python" -c "import cantools, can, asammdf; print('install-python-deps: cantools',
+  cantools.__version__, 'python-can', can.__version__, 'asammdf', asammdf.__version__)"

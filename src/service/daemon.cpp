@@ -23,6 +23,7 @@
 #include "vmass/io/excerpt.hpp"
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/log_frame_source.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
@@ -32,6 +33,7 @@
 #include "vmass/service/stop_signals.hpp"
 #include "vmass/service/systemd_notifier.hpp"
 #include "vmass/signals/signal_mapping.hpp"
+#include "vmass/version.hpp"
 
 namespace vmass::service {
 namespace {
@@ -100,9 +102,13 @@ void log_mapping(const signals::CanInputs& can) {
       unmapped += (unmapped.empty() ? "" : ", ") + std::string(input_name(input));
     }
   }
-  std::string mapped = can.mapping.describe();
-  while (!mapped.empty() && mapped.back() == '\n') mapped.pop_back();
-  if (!mapped.empty()) spdlog::info("can.inputs:\n{}", mapped);
+  // One message per input: a journal entry each (SignalMapping::describe() gives one per line).
+  const std::string mapped = can.mapping.describe();
+  for (std::size_t p = 0; p < mapped.size();) {
+    const std::size_t eol = std::min(mapped.find('\n', p), mapped.size());
+    if (eol > p) spdlog::info("can.inputs.{}", std::string_view(mapped).substr(p, eol - p));
+    p = eol + 1;
+  }
   if (!unmapped.empty()) spdlog::warn("can.inputs: not mapped, stay invalid: {}", unmapped);
 }
 
@@ -159,11 +165,17 @@ OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
   std::string error;
   std::unique_ptr<runtime::FrameSource> frames;
   if (!options.replay_log.empty()) {
-    frames = runtime::CandumpFrameSource::open(options.replay_log, &error);
-    if (!frames) {
+    std::unique_ptr<runtime::LogFrameSource> log =
+        runtime::open_log_frame_source(options.replay_log, &error);
+    if (!log) {
       spdlog::error("{}", error);
       return {nullptr, kExitUsage};
     }
+    spdlog::info("{}: {}", options.replay_log, can::log_format_name(log->format()));
+    log->on_error([log = log.get()](const can::CandumpError& e) {
+      if (log->stats().corrupt <= 10) spdlog::warn("{} (skipped)", e.message);
+    });
+    frames = std::move(log);
   } else {
     int exit_code = kExitOk;
     frames = open_socketcan(options, settings, can.inputs->decoder->database(), &exit_code);
@@ -316,8 +328,8 @@ bool save_final_state(runtime::InputSource& source, runtime::TickStep& step, Sha
 void log_start(const StatusContext& ctx, const Plan& plan, const DaemonOptions& options,
                const ServiceSettings& settings, const std::string& state_file,
                std::string_view estimator, const SystemdNotifier& notifier) {
-  spdlog::info("vmassd running: input {}, {} estimator at {} Hz{}, LCM {}{}", ctx.source_name,
-               estimator, plan.tick_rate_hz,
+  spdlog::info("vmassd running (version {}): input {}, {} estimator at {} Hz{}, LCM {}{}", kVersion,
+               ctx.source_name, estimator, plan.tick_rate_hz,
                plan.recorded ? (plan.max_speed ? std::string(", speed max (log time)")
                                                : ", speed " + options.speed)
                              : std::string(),
@@ -414,6 +426,7 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
 
 int run_daemon(const DaemonOptions& options) {
   const std::int64_t start_mono = mono_ns();
+  spdlog::info("vmassd {} starting: config {}", kVersion, options.config_path);
   ConfigLoad loaded = load_config(options.config_path);
   if (!loaded.ok()) {
     spdlog::error("{}", loaded.error);

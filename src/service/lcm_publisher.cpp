@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "vmass/version.hpp"
+
 namespace vmass::service {
 namespace {
 
@@ -135,7 +137,7 @@ void messages_to_lcm(const DaemonStatus& s, vmass::status_t* out) {
 void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->utime = s.last.estimate.time_us;
   out->schema_version = kLcmSchemaVersion;
-  out->version = VMASS_VERSION;
+  out->version = kVersion;  // vmass/version.hpp
   out->uptime_s = finite_or_zero(s.uptime_s);
   out->state = static_cast<std::int8_t>(s.state);
   assign(&out->state_name, daemon_state_name(s.state));

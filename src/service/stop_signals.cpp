@@ -4,11 +4,14 @@
 
 #include <atomic>
 
+#include "vmass/service/journal_logging.hpp"
+
 namespace vmass::service {
 namespace {
 
 std::atomic<bool> g_serving{false};
 std::atomic<int> g_stop_signal{0};
+std::atomic<bool> g_journal{false};  ///< stderr is the journal: its form (journal_logging.hpp)
 static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
               "touched from a signal handler");
 
@@ -17,7 +20,10 @@ void on_stop_signal(int sig) {
   if (sig == SIGHUP) return;  // a reload: not supported, logged by the main loop when serving
   if (!g_serving.load()) {
     constexpr char kMessage[] = "vmassd: stopped during start-up\n";
-    const ssize_t ignored = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    constexpr char kJournalMessage[] = "<6>stopped during start-up\n";
+    const ssize_t ignored =
+        g_journal.load() ? ::write(STDERR_FILENO, kJournalMessage, sizeof kJournalMessage - 1)
+                         : ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
     (void)ignored;
     ::_exit(0);
   }
@@ -27,6 +33,7 @@ void on_stop_signal(int sig) {
 }  // namespace
 
 void install_stop_signals() {
+  g_journal.store(stderr_is_journal());
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);

@@ -49,7 +49,7 @@ case "$case_name" in
     expect_error 2 "'12 mm' is not a number" --ballast s.csv $geometry ;;
   candump_log)
     printf '(1700000000.000000) can0 123#0011223344556677\n' >test.log
-    expect_error 2 "is a candump -l log: give --config FILE" --ballast test.log $geometry
+    expect_error 2 "is a CAN log: give --config FILE" --ballast test.log $geometry
     printf 'vehicle:\n  empty_mass_kg: 1500\n  wheelbase_m: 2.7\n  cg_to_front_axle_m: 1.2\n  wheel_radius_m: 0.31\n  brake_gain_n_per_pa: 0.0033\n  steering_ratio: 15.5\n  cornering_stiffness_front_n_per_rad: 150000\n  cornering_stiffness_rear_n_per_rad: 170000\nsuspension:\n  stiffness_n_per_m: 30000\n' >c.yaml
     expect_error 2 "c.yaml: can: required section is missing" --ballast test.log --config c.yaml \
       --masses 0:100:200 ;;

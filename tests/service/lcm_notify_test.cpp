@@ -19,6 +19,7 @@
 
 #include "vmass/service/lcm_publisher.hpp"
 #include "vmass/service/systemd_notifier.hpp"
+#include "vmass/version.hpp"
 
 namespace vmass::service {
 namespace {
@@ -161,6 +162,7 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   ASSERT_EQ(rx.statuses.size(), 1u);
   const vmass::status_t& s = rx.statuses[0];
   EXPECT_EQ(s.state_name, "running");
+  EXPECT_EQ(s.version, std::string(kVersion));  // vmass/version.hpp, as --version prints
   EXPECT_EQ(s.source, "samples:drive.csv");
   EXPECT_EQ(s.uptime_s, 12.5);
   EXPECT_EQ(s.mass_kg, record.estimate.mass_kg);

@@ -7,20 +7,33 @@
 //      parse, an invalid configuration
 //
 // CLI11's own codes (106 for a missing required option, ...) never reach the shell. Tested per
-// tool in tests/tools.
+// tool in tests/tools. The parse also gives every tool `--version` ("vmass-replay 0.1.0", the
+// version of vmass/version.hpp), which help2man reads for the man pages.
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "vmass/version.hpp"
 
 namespace vmass::tools {
 
 enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitUsage = 2 };
 
+/// "NAME VERSION" for --version; NAME is argv[0] without its directory.
+inline std::string version_line(const char* argv0) {
+  std::string name = argv0 != nullptr ? argv0 : "vmass";
+  name = name.substr(name.find_last_of('/') + 1);
+  return name + " " + kVersion;
+}
+
 /// Parses the command line. nullopt: go on; otherwise return this code from main (0 after
 /// --help or --version, kExitUsage after a parse error; CLI11 has printed the message).
 inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  app.set_version_flag("--version", version_line(argc > 0 ? argv[0] : nullptr),
+                       "print the program's name and version, then exit");
   try {
     app.parse(argc, argv);
     return std::nullopt;

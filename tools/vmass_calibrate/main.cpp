@@ -7,7 +7,8 @@
 //
 // --ballast takes a steps CSV (added_mass_<unit>, rear_right_deflection_<unit>; one row per
 // sample or step), a time series (time_s, rear_right_deflection_<unit>[, speed_mps], e.g. a
-// vmass samples.csv), or a candump -l log of the test (recognised by its first line), decoded
+// vmass samples.csv), or a CAN log of the test (candump -l, Vector ASC or BLF, PEAK TRC, ASAM
+// MDF4: recognised by its content, runtime/log_frame_source.hpp), decoded
 // with the --config file's `can:` section and ticked at 100 Hz in log time by the runtime's tick
 // driver (vmass/runtime/tick_driver.hpp, as in vmass-replay); every tick with a new, valid
 // rear_right_deflection frame
@@ -34,8 +35,8 @@
 #include "vmass/calibrate/calibration_report.hpp"
 #include "vmass/calibrate/plateau_detector.hpp"
 #include "vmass/calibrate/suspension_fit.hpp"
+#include "vmass/can/log_format.hpp"
 #include "vmass/config/config.hpp"
-#include "vmass/io/line_reader.hpp"
 #include "vmass/io/regular_file.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/tick_driver.hpp"
@@ -70,33 +71,32 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
-// True when the file's first meaningful line is a candump -l record "(seconds) iface id#data".
-bool looks_like_candump(const std::string& path) {
-  if (!vmass::io::check_input_file(path, false).empty()) return false;  // the reader says why
-  std::ifstream in(path);
-  vmass::io::LineReader lines(in, 4096);
-  std::string line;
-  while (lines.next(&line)) {
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos) continue;
-    return line[first] == '(' && line.find('#') != std::string::npos;
-  }
-  return false;
+// True when the file is a CAN log (candump -l, Vector ASC or BLF, PEAK TRC, ASAM MDF4, ...: the
+// format found from its content), not a CSV; false for a file that cannot be read or is no
+// regular file (the CSV reader says why).
+bool is_can_log(const std::string& path) {
+  if (!vmass::io::check_input_file(path, false).empty()) return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(vmass::can::kLogFormatProbeBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.empty()) return false;  // empty: the CSV reader says so
+  return vmass::can::detect_log_format(head) != vmass::can::LogFormat::kUnknown;
 }
 
-// The deflection series of a candump log (see the header comment). "" or a message.
+// The deflection series of a CAN log (see the header comment). "" or a message.
 std::string read_log_series(const std::string& path, const vmass::Config& config,
                             std::vector<vmass::calibrate::DeflectionPoint>* series,
                             std::string* note) {
   namespace rt = vmass::runtime;
-  rt::CandumpRecording recording = rt::open_candump_recording(path, config);
+  rt::LogRecording recording = rt::open_log_recording(path, config);
   if (!recording.source) return recording.error;
   const rt::CanInputSource& source = *recording.source;
   if (!source.table().input_state(vmass::Input::kRearRightDeflection).mapped) {
     return config.file + ": can.inputs.rear_right_deflection: required to calibrate from a log";
   }
   for (const std::string& w : recording.warnings) std::cerr << "vmass-calibrate: " << w << "\n";
-  rt::CandumpFrameSource& log = *recording.log;
+  rt::LogFrameSource& log = *recording.log;
   log.on_error([&log](const vmass::can::CandumpError& e) {
     if (log.stats().corrupt <= 10) std::cerr << "vmass-calibrate: " << e.message << "\n";
   });
@@ -123,11 +123,11 @@ std::string read_log_series(const std::string& path, const vmass::Config& config
   const auto& c = source.table().counters();
   char buf[200];
   std::snprintf(buf, sizeof buf,
-                "log: %llu frames (%llu corrupt lines, %llu unknown id, %llu too short), %lld "
+                "log: %llu frames (%llu corrupt %ss, %llu unknown id, %llu too short), %lld "
                 "ticks, %zu deflection points",
                 static_cast<unsigned long long>(log.stats().frames),
                 static_cast<unsigned long long>(log.stats().corrupt),
-                static_cast<unsigned long long>(c.unknown_id),
+                std::string(log.unit()).c_str(), static_cast<unsigned long long>(c.unknown_id),
                 static_cast<unsigned long long>(c.malformed), static_cast<long long>(run.ticks),
                 series->size());
   *note = buf;
@@ -158,8 +158,8 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
   double min_step_mm = o->plateau.min_step_m * 1e3;
   app.add_option("--ballast", o->ballast_path,
                  "steps CSV (added_mass_kg, rear_right_deflection_mm), time series CSV "
-                 "(time_s, rear_right_deflection_<unit>[, speed_mps]) or candump -l log "
-                 "(with --config: its can: section)")
+                 "(time_s, rear_right_deflection_<unit>[, speed_mps]) or CAN log (candump -l, "
+                 "Vector ASC/BLF, PEAK TRC, ASAM MDF4; with --config: its can: section)")
       ->required();
   app.add_option("--config", o->config_path, "vmass YAML config: vehicle geometry and empty mass");
   app.add_option("--masses", o->masses_text,
@@ -218,16 +218,16 @@ std::string load_vehicle(const Options& o, VehicleSetup* out) {
   return "";
 }
 
-/// The ballast file as a steps CSV or a time series (a CSV or a candump log). "" or an error.
+/// The ballast file as a steps CSV or a time series (a CSV or a CAN log). "" or an error.
 std::string read_ballast(const Options& o, const VehicleSetup& setup,
                          vmass::calibrate::BallastCsvRead* read, std::string* log_note) {
-  if (!looks_like_candump(o.ballast_path)) {
+  if (!is_can_log(o.ballast_path)) {
     *read = vmass::calibrate::read_ballast_csv(o.ballast_path);
     return read->ok() ? "" : read->error;
   }
   if (!setup.config) {
     return o.ballast_path +
-           " is a candump -l log: give --config FILE with the can: section that maps "
+           " is a CAN log: give --config FILE with the can: section that maps "
            "rear_right_deflection (and speed) from the DBC";
   }
   read->csv = vmass::calibrate::BallastCsv{};

@@ -1,20 +1,25 @@
 // vmass-can: the CAN layer from the command line.
 //
 //   vmass-can check  --dbc FILE [--strict]            validate a DBC, list messages and signals
-//   vmass-can decode --dbc FILE [LOG] [--json]        decode a candump -l log (stdin without LOG)
+//   vmass-can decode --dbc FILE [LOG] [--json]        decode a CAN log (stdin without LOG): candump
+//                                                     -l or screen output, Vector ASC or BLF,
+//                                                     PEAK TRC, ASAM MDF4
+//                                                     (runtime/log_frame_source)
 //   vmass-can dump   --can IFACE [--count N] [--idle-timeout S] [--dbc FILE]
 //                                                     print frames from SocketCAN as candump -l
 //
 // Exit codes (tools/common/exit_code.hpp): 0 ok; 1 failure (SocketCAN cannot be opened, dump
 // got fewer than --count frames before the idle timeout, a read error in the log); 2 usage or
 // input error (a DBC with errors, or with deviations under --strict: check reports every one,
-// decode decodes with what loaded and still exits 2; a log that cannot be opened).
+// decode decodes with what loaded and still exits 2; a log that cannot be opened or is no CAN
+// log); decode exits 1 when the BLF/MDF4 converter failed on the way.
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,11 +28,13 @@
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
 #include "vmass/can/socketcan.hpp"
-#include "vmass/io/regular_file.hpp"
+#include "vmass/runtime/log_frame_source.hpp"
+#include "vmass/runtime/text_log_frame_source.hpp"
 
 namespace {
 
 using namespace vmass::can;
+namespace rt = vmass::runtime;
 
 void print_diagnostics(const DbcParseResult& r) {
   for (const DbcDiagnostic& d : r.diagnostics) std::cerr << d.to_string() << "\n";
@@ -192,22 +199,38 @@ void append_text(std::string& out, const Decoder& decoder, const Message& msg,
   out += ")\n";
 }
 
+/// The log to decode: a file of any format vmass reads, or standard input (text formats).
+std::unique_ptr<rt::LogFrameSource> open_decode_input(const std::string& log) {
+  std::string error;
+  std::unique_ptr<rt::LogFrameSource> source;
+  if (log.empty() || log == "-") {
+    source = rt::TextLogFrameSource::from_stream(std::make_unique<std::istream>(std::cin.rdbuf()),
+                                                 "stdin", false, &error);
+  } else {
+    source = rt::open_log_frame_source(log, &error, false);
+  }
+  if (!source) std::cerr << "vmass-can decode: " << error << "\n";
+  return source;
+}
+
 /// Decodes every frame of the log to stdout; undecodable frames are echoed (text) or left out
-/// (JSON), too-short ones reported.
-DecodeStats decode_frames(CandumpReader& reader, const Decoder& decoder, bool json) {
+/// (JSON), too-short ones reported with their line (record).
+DecodeStats decode_frames(rt::LogFrameSource& source, const Decoder& decoder, bool json) {
   const Database& db = decoder.database();
   DecodeStats stats;
   CandumpRecord rec;
   std::string out;
   out.reserve(4096);
-  while (reader.next(&rec)) {
+  while (source.read(&rec.frame, 0) == rt::FrameSource::Read::kFrame) {
+    rec.interface = source.interface_name();
     int m = -1;
     out.clear();
     const DecodeStatus st = decoder.classify(rec.frame, &m);
     stats.count(st);
     if (st != DecodeStatus::kOk) {
       if (st == DecodeStatus::kTooShort) {
-        std::cerr << reader.source() << ":" << reader.line_number() << ": frame "
+        std::cerr << source.path() << ":" << (source.unit() == "record" ? "record " : "")
+                  << source.position() << ": frame "
                   << db.messages[static_cast<std::size_t>(m)].name << " has " << int(rec.frame.len)
                   << " bytes, the DBC says " << db.messages[static_cast<std::size_t>(m)].length
                   << ": rejected\n";
@@ -231,35 +254,21 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
   bool dbc_errors = false;
   auto decoder = load_decoder(dbc, strict, json, &dbc_errors);
   if (!decoder) return vmass::tools::kExitUsage;
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  if (!log.empty() && log != "-") {
-    const std::string why = vmass::io::check_input_file(log, true);
-    if (!why.empty()) {
-      std::cerr << log << ": cannot open the log: " << why << "\n";
-      return vmass::tools::kExitUsage;
-    }
-    file.open(log, std::ios::binary);
-    if (!file) {
-      std::cerr << log << ": cannot open the log\n";
-      return vmass::tools::kExitUsage;
-    }
-    in = &file;
-  }
-  CandumpReader reader(*in, log.empty() ? "stdin" : log);
-  reader.on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
-  const DecodeStats stats = decode_frames(reader, *decoder, json);
-  const CandumpStats& cs = reader.stats();
-  std::cerr << "vmass-can decode: " << cs.frames << " frames, " << stats.decoded << " decoded, "
-            << stats.unknown_id << " unknown id, " << stats.too_short << " too short, "
-            << stats.remote << " remote, " << stats.error_frames << " error frames, " << cs.corrupt
-            << " corrupt lines\n";
+  std::unique_ptr<rt::LogFrameSource> source = open_decode_input(log);
+  if (!source) return vmass::tools::kExitUsage;
+  source->on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
+  const DecodeStats stats = decode_frames(*source, *decoder, json);
+  const CandumpStats& cs = source->stats();
+  std::cerr << "vmass-can decode: " << log_format_name(source->format()) << ", " << cs.frames
+            << " frames, " << stats.decoded << " decoded, " << stats.unknown_id << " unknown id, "
+            << stats.too_short << " too short, " << stats.remote << " remote, "
+            << stats.error_frames << " error frames, " << cs.corrupt << " corrupt "
+            << source->unit() << "s\n";
   if (dbc_errors) return vmass::tools::kExitUsage;
-  if (!reader.read_error().empty()) {
-    std::cerr << reader.read_error() << "\n";
-    return vmass::tools::kExitFailure;
-  }
-  return vmass::tools::kExitOk;
+  if (source->problem().empty()) return vmass::tools::kExitOk;
+  // A converter's failure was reported with the records; a read error is said here.
+  if (!vmass::can::is_converted_format(source->format())) std::cerr << source->problem() << "\n";
+  return vmass::tools::kExitFailure;
 }
 
 int run_dump(const std::string& iface, long count, double idle_timeout_s, const std::string& dbc) {
@@ -327,9 +336,11 @@ int main(int argc, char** argv) {
   check->add_option("--dbc", dbc, "DBC file")->required();
   check->add_flag("--strict", strict, "treat deviations from the format as errors");
 
-  CLI::App* decode = app.add_subcommand("decode", "decode a candump -l log with a DBC file");
+  CLI::App* decode = app.add_subcommand("decode", "decode a CAN log with a DBC file");
   decode->add_option("--dbc", dbc, "DBC file")->required();
-  decode->add_option("log", log, "candump -l log (default: standard input)");
+  decode->add_option("log", log,
+                     "CAN log: candump -l or screen output, Vector ASC/BLF, PEAK TRC, ASAM MDF4 "
+                     "(default: standard input, a text format)");
   decode->add_flag("--json", json, "one JSON object per decoded frame");
   decode->add_flag("--strict", strict, "refuse a DBC with deviations");
 

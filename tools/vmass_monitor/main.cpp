@@ -1,5 +1,6 @@
 // vmass-monitor: a terminal view of a running vmassd over LCM, for a headless vehicle PC reached
-// over SSH: live mass, interval, status, availability and input health, redrawn in place (ANSI).
+// over SSH: live mass, interval, status, availability and input health, redrawn in place (ANSI),
+// in 80 columns.
 //
 //   vmass-monitor [--config FILE] [--lcm-url URL] [--estimate-channel C] [--status-channel C]
 //                 [--once | --count N | --rates SECONDS] [--timeout SECONDS] [--plain]
@@ -30,6 +31,7 @@
 #include <vmass/status_t.hpp>
 
 #include "exit_code.hpp"
+#include "monitor_report.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/service/service_config.hpp"
 
@@ -89,81 +91,11 @@ class Monitor {
     record(&statuses_, nonfinite(*msg));
   }
 
+  /// What was received last, laid out for 80 columns (monitor_report.hpp).
   std::string report(const std::string& url) const {
-    std::string out;
-    char line[512];
-    std::snprintf(line, sizeof line, "vmass-monitor  %s   estimates %.1f Hz, status %.2f Hz\n",
-                  url.c_str(), estimates_.rate_hz(), statuses_.rate_hz());
-    out += line;
-    if (estimate_) {
-      const vmass::mass_estimate_t& e = *estimate_;
-      if (e.mass_known) {
-        std::snprintf(line, sizeof line,
-                      "mass      %8.1f kg   95%% [%.1f, %.1f] kg   std %.1f kg   mu %.1f N\n",
-                      e.mass_kg, e.mass_ci_low_kg, e.mass_ci_high_kg, e.mass_std_kg, e.mu_n);
-      } else {
-        std::snprintf(line, sizeof line, "mass      (not known yet)\n");
-      }
-      out += line;
-      std::snprintf(line, sizeof line,
-                    "status    %s (%s)   estimator %s   initial %.1f kg   pairs %lld   t %.2f s\n",
-                    e.status_name.c_str(), e.reason_name.c_str(), e.estimator.c_str(),
-                    e.initial_mass_kg, static_cast<long long>(e.pairs_used),
-                    static_cast<double>(e.utime) * 1e-6);
-      out += line;
-      std::snprintf(
-          line, sizeof line,
-          "available longitudinal %5.1f %% (%lld pairs, %lld rejected)   "
-          "lateral %5.1f %% (%lld pairs, %lld rejected)\n",
-          100.0 * e.longitudinal_availability, static_cast<long long>(e.longitudinal_accepted),
-          static_cast<long long>(e.longitudinal_rejected), 100.0 * e.lateral_availability,
-          static_cast<long long>(e.lateral_accepted), static_cast<long long>(e.lateral_rejected));
-      out += line;
-    } else {
-      out += "mass      (no estimate received)\n";
-    }
-    if (status_) {
-      const vmass::status_t& s = *status_;
-      std::snprintf(line, sizeof line, "daemon    %s   up %.0f s   input %s%s%s\n",
-                    s.state_name.c_str(), s.uptime_s, s.source.c_str(),
-                    s.detail.empty() ? "" : ": ", s.detail.c_str());
-      out += line;
-      std::snprintf(line, sizeof line,
-                    "ticks     %lld at %.0f Hz   overruns %lld   skipped %lld   jitter p50/p99/max "
-                    "%.0f/%.0f/%.0f us   queue drops %lld\n",
-                    static_cast<long long>(s.ticks), s.tick_rate_hz,
-                    static_cast<long long>(s.tick_overruns),
-                    static_cast<long long>(s.ticks_skipped), s.jitter_p50_us, s.jitter_p99_us,
-                    s.jitter_max_us, static_cast<long long>(s.publish_queue_drops));
-      out += line;
-      std::snprintf(
-          line, sizeof line,
-          "frames    %lld received, %lld decoded, %lld unknown, %lld malformed, "
-          "%lld dropped, %lld bus errors, %lld reopens\n",
-          static_cast<long long>(s.frames_received), static_cast<long long>(s.frames_decoded),
-          static_cast<long long>(s.frames_unknown), static_cast<long long>(s.frames_malformed),
-          static_cast<long long>(s.frames_dropped), static_cast<long long>(s.bus_errors),
-          static_cast<long long>(s.source_reopens));
-      out += line;
-      out += "inputs   ";
-      for (int i = 0; i < s.num_inputs; ++i) {
-        const auto k = static_cast<std::size_t>(i);
-        if (s.input_age_s[k] < 0.0) {
-          std::snprintf(line, sizeof line, " %s: never%s", s.input_name[k].c_str(),
-                        i + 1 < s.num_inputs ? "," : "");
-        } else {
-          std::snprintf(line, sizeof line, " %s: %s %.0f ms%s", s.input_name[k].c_str(),
-                        s.input_valid[k] ? "ok" : "INVALID", s.input_age_s[k] * 1e3,
-                        i + 1 < s.num_inputs ? "," : "");
-        }
-        out += line;
-        if (i % 3 == 2 && i + 1 < s.num_inputs) out += "\n         ";
-      }
-      out += "\n";
-    } else {
-      out += "daemon    (no status received)\n";
-    }
-    return out;
+    return vmass::monitor::monitor_report(url, estimates_.rate_hz(), statuses_.rate_hz(),
+                                          estimate_ ? &*estimate_ : nullptr,
+                                          status_ ? &*status_ : nullptr);
   }
 
   const ChannelStats& estimates() const { return estimates_; }

@@ -10,7 +10,7 @@
 
 #include "replay_run.hpp"
 #include "vmass/runtime/can_input_source.hpp"
-#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/log_frame_source.hpp"
 
 namespace vmass {
 namespace {
@@ -48,10 +48,10 @@ FleetLogResult replay_one(const std::string& path, const signals::CanInputs& can
                           const PipelineParams& params, const std::string& csv_path) {
   FleetLogResult r;
   r.path = path;
-  std::unique_ptr<runtime::CandumpFrameSource> frames =
-      runtime::CandumpFrameSource::open(path, &r.error);
+  // Any CAN log vmass reads, its format found from its content, as --log reads it.
+  std::unique_ptr<runtime::LogFrameSource> frames = runtime::open_log_frame_source(path, &r.error);
   if (!frames) return r;
-  const runtime::CandumpFrameSource& log = *frames;
+  const runtime::LogFrameSource& log = *frames;
   runtime::CanInputSource source(std::move(frames), can.decoder, can.mapping);
   std::unique_ptr<EstimateCsvWriter> writer;
   if (!csv_path.empty()) {

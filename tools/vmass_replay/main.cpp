@@ -8,9 +8,10 @@
 //
 // The recording ticks through vmass_runtime exactly as in vmassd (runtime::TickDriver on the
 // tick grid T_k = T_0 + k / tick_rate_hz in log time, T_0 the first record's time; tick k sees
-// every record stamped at or before T_k; runtime::TickStep): --log decodes a candump -l log with
-// the config's `can:` section into a SignalTable, --samples holds samples.csv rows (an input
-// older than 5 ticks is stale). Corrupt log lines are reported and counted, never fatal.
+// every record stamped at or before T_k; runtime::TickStep): --log decodes a CAN log (candump
+// -l, Vector ASC or BLF, PEAK TRC, ASAM MDF4: runtime::LogFrameSource, the format found from the
+// content) with the config's `can:` section into a SignalTable, --samples holds samples.csv rows
+// (an input older than 5 ticks is stale). Corrupt log lines are reported and counted, never fatal.
 // --truth is read only when given, and refused (exit 2) when its time base is not the input's
 // (Truth::check_time_base). At the end the open Bayes batch is flushed into the final estimate
 // the summary prints. Records out of time order are put back in order within 50 ms, clock
@@ -83,7 +84,8 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
   app.add_option("--config", o->config_path, "vmass YAML config")->required();
   auto* samples = app.add_option("--samples", o->samples_path, "samples CSV (docs/formats.md)");
   auto* log = app.add_option("--log", o->log_path,
-                             "candump -l log, decoded with the config's can: section");
+                             "CAN log (candump -l, Vector ASC/BLF, PEAK TRC, ASAM MDF4), decoded "
+                             "with the config's can: section");
   samples->excludes(log);
   log->excludes(samples);
   auto* truth =
@@ -133,7 +135,7 @@ std::string shell_quote(const std::string& s) {
 
 /// The recording as an InputSource; null (and a message) when it cannot be read.
 std::unique_ptr<rt::InputSource> open_input(const Options& o, const vmass::Config& config,
-                                            rt::CandumpFrameSource** log) {
+                                            rt::LogFrameSource** log) {
   std::string error;
   if (o.log_path.empty()) {
     const double timeout_s =
@@ -142,7 +144,7 @@ std::unique_ptr<rt::InputSource> open_input(const Options& o, const vmass::Confi
     if (!samples) std::cerr << "vmass-replay: " << error << "\n";
     return samples;
   }
-  rt::CandumpRecording recording = rt::open_candump_recording(o.log_path, config);
+  rt::LogRecording recording = rt::open_log_recording(o.log_path, config);
   if (!recording.source) {
     std::cerr << "vmass-replay: " << recording.error << "\n";
     return nullptr;
@@ -151,8 +153,8 @@ std::unique_ptr<rt::InputSource> open_input(const Options& o, const vmass::Confi
   *log = recording.log;
   constexpr std::uint64_t kReportedLines = 10;
   (*log)->on_error([log = *log](const vmass::can::CandumpError& e) {
-    if (log->stats().corrupt <= kReportedLines) {
-      std::cerr << "vmass-replay: " << e.message << " (line skipped)\n";  // "path:line: ..."
+    if (log->stats().corrupt <= kReportedLines) {  // "path:line: ..." / "path:record N: ..."
+      std::cerr << "vmass-replay: " << e.message << " (" << log->unit() << " skipped)\n";
     }
   });
   return std::move(recording.source);
@@ -169,8 +171,8 @@ void report_clock(const Options& o, const rt::InputSource& source) {
 }
 
 /// What the input held: frames and lines of a log, skipped rows of a samples CSV.
-void report_input(const Options& o, const rt::InputSource& source,
-                  const rt::CandumpFrameSource* log, const rt::TickRun& run) {
+void report_input(const Options& o, const rt::InputSource& source, const rt::LogFrameSource* log,
+                  const rt::TickRun& run) {
   report_clock(o, source);
   if (const auto* samples = dynamic_cast<const rt::SamplesCsvSource*>(&source)) {
     for (const auto& w : samples->warnings()) std::cerr << "vmass-replay: warning: " << w << "\n";
@@ -181,10 +183,10 @@ void report_input(const Options& o, const rt::InputSource& source,
   }
   const auto& can = dynamic_cast<const rt::CanInputSource&>(source);
   const vmass::signals::SignalTableCounters& c = can.table().counters();
-  std::cerr << "vmass-replay: " << o.log_path << ": " << log->stats().frames << " frames, "
-            << log->stats().corrupt << " corrupt lines; decoded " << c.decoded << ", unknown id "
-            << c.unknown_id << ", too short " << c.malformed << ", error frames " << c.error_frames
-            << "\n";
+  std::cerr << "vmass-replay: " << o.log_path << " (" << vmass::can::log_format_name(log->format())
+            << "): " << log->stats().frames << " frames, " << log->stats().corrupt << " corrupt "
+            << log->unit() << "s; decoded " << c.decoded << ", unknown id " << c.unknown_id
+            << ", too short " << c.malformed << ", error frames " << c.error_frames << "\n";
   const std::string inputs = can.input_report();
   if (!inputs.empty()) std::cerr << "vmass-replay: inputs: " << inputs << "\n";
   if (!run.any_record) std::cerr << "vmass-replay: " << o.log_path << ": no frames\n";
@@ -212,6 +214,7 @@ bool plot(const Options& o, const std::string& csv_path, const std::string& esti
                         shell_quote(csv_path) + " --out " + shell_quote(o.plot_path) + " --title " +
                         shell_quote("vmass-replay " + estimator_name + ": " + o.input_path());
   if (!o.truth_path.empty()) command += " --truth " + shell_quote(o.truth_path);
+  command += " >&2";  // its account of the axes goes with the diagnostics, not the summary
   const int rc = std::system(command.c_str());
   if (rc != 0) std::cerr << "vmass-replay: plotting failed (" << command << ")\n";
   return rc == 0;
@@ -222,7 +225,7 @@ int replay_one_input(const Options& o, const vmass::Config& config,
                      const vmass::PipelineParams& params) {
   std::optional<vmass::Truth> truth;
   if (!load_truth(o, &truth)) return kExitUsage;
-  rt::CandumpFrameSource* log = nullptr;
+  rt::LogFrameSource* log = nullptr;
   std::unique_ptr<rt::InputSource> source = open_input(o, config, &log);
   if (!source) return kExitUsage;
   const std::string csv_path = estimate_csv_path(o);

@@ -23,6 +23,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "exit_code.hpp"
+
 #include "vmass/sim/can_writer.hpp"
 #include "vmass/sim/config_writer.hpp"
 #include "vmass/sim/csv_writer.hpp"
@@ -197,14 +199,7 @@ int main(int argc, char** argv) {
       "drive.log, vehicle.dbc"};
   Args a;
   add_options(app, a);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitError;
-  }
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   if (a.list) return list_scenarios();
   if (a.list_vehicles > 0) return list_vehicles(a.list_vehicles, a.first_seed);
   if (a.pop.vehicle_id.empty()) return run_demo_scenario(a);

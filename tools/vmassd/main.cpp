@@ -9,12 +9,11 @@
 // (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
 // (--replay, --samples) stops the daemon at its end. Exit codes (tools/common/exit_code.hpp):
 // 0 orderly stop, 1 start-up failure (input or LCM cannot be opened), 2 usage or config error.
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
 #include "exit_code.hpp"
 #include "vmass/service/daemon.hpp"
+#include "vmass/service/journal_logging.hpp"
 #include "vmass/service/stop_signals.hpp"
 
 int main(int argc, char** argv) {
@@ -29,7 +28,9 @@ int main(int argc, char** argv) {
                                 "read SocketCAN records (struct can_frame/canfd_frame) from this "
                                 "inherited descriptor instead of an interface (benchmarks, tests)")
                      ->check(CLI::NonNegativeNumber);
-  auto* replay = app.add_option("--replay", o.replay_log, "replay a candump -l log");
+  auto* replay = app.add_option(
+      "--replay", o.replay_log,
+      "replay a CAN log (candump -l, Vector ASC/BLF, PEAK TRC, ASAM MDF4; found from its content)");
   auto* samples = app.add_option("--samples", o.samples_csv,
                                  "replay a samples.csv (inputs already in SI units)");
   app.add_option("--speed", o.speed,
@@ -44,8 +45,7 @@ int main(int argc, char** argv) {
   replay->excludes(samples);
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
 
-  // Diagnostics go to stderr (the journal under systemd); stdout stays free.
-  spdlog::set_default_logger(spdlog::stderr_color_mt("vmassd"));
-  spdlog::set_pattern("vmassd %^%l%$: %v");
+  // Diagnostics go to stderr (the journal under systemd, in its form); stdout stays free.
+  vmass::service::setup_logging("vmassd");
   return vmass::service::run_daemon(o);
 }

@@ -42,7 +42,7 @@ struct DaemonOptions {
   /// descriptor instead of an interface, through the reader's fd seam (benchmarks, tests); -1:
   /// none.
   int can_fd = -1;
-  std::string replay_log;   ///< --replay (candump -l)
+  std::string replay_log;   ///< --replay (a CAN log: runtime/log_frame_source.hpp)
   std::string samples_csv;  ///< --samples
   std::string speed = "1";  ///< --speed X|max (recordings only)
   std::string lcm_url;      ///< --lcm-url (overrides lcm.url)

@@ -4,8 +4,9 @@
 //
 //   install_stop_signals()   first thing in main: until block_stop_signals(), SIGTERM or SIGINT
 //                            ends the process at once with exit code 0 (nothing is estimated
-//                            or saved yet); SIGHUP does nothing (no reload), SIGPIPE is
-//                            ignored (for good)
+//                            or saved yet), saying "vmassd: stopped during start-up" (in the
+//                            journal's form when stderr is the journal, journal_logging.hpp);
+//                            SIGHUP does nothing (no reload), SIGPIPE is ignored (for good)
 //   block_stop_signals()     before the daemon's threads start: the signals are blocked (every
 //                            thread started later inherits the mask) and the main loop takes
 //                            them with sigtimedwait; one that a thread with the signals

@@ -1,0 +1,77 @@
+#include "vmass/runtime/log_frame_source.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "vmass/io/regular_file.hpp"
+#include "vmass/runtime/converted_log_frame_source.hpp"
+#include "vmass/runtime/text_log_frame_source.hpp"
+
+namespace vmass::runtime {
+namespace {
+
+/// Why a file of this format is not a CAN log vmass reads ("" when it is one).
+std::string refusal(can::LogFormat format) {
+  switch (format) {
+    case can::LogFormat::kLcmLog:
+      return "an LCM log (lcm-logger), not CAN frames: plot it with vmass-plot --estimates";
+    case can::LogFormat::kMdf3:
+      return "MDF version 3 has no CAN bus logging: convert it to MDF4";
+    case can::LogFormat::kUnknown:
+      return "not a CAN log vmass reads (candump -l, candump screen output, Vector ASC, "
+             "PEAK TRC, Vector BLF, ASAM MDF4 bus logging)";
+    default:
+      return "";
+  }
+}
+
+}  // namespace
+
+void LogFrameSource::count_frame(const can::CanFrame& frame, std::int64_t position) {
+  position_ = position;
+  ++stats_.frames;
+  if (frame.fd()) ++stats_.fd_frames;
+  if (frame.remote()) ++stats_.remote_frames;
+  if (frame.error()) ++stats_.error_frames;
+}
+
+void LogFrameSource::report_corrupt(std::int64_t position, const std::string& why) {
+  ++stats_.corrupt;
+  const std::string where = can::is_converted_format(format_) ? ":record " : ":";
+  if (callback_) callback_({position, path_ + where + std::to_string(position) + ": " + why});
+}
+
+std::unique_ptr<LogFrameSource> open_log_frame_source(const std::string& path, std::string* error,
+                                                      bool require_time) {
+  // A regular file or a pipe (candump -l | vmassd --replay /dev/stdin); never a directory or a
+  // device such as /dev/zero.
+  if (const std::string why = io::check_input_file(path, true); !why.empty()) {
+    if (error) *error = path + ": cannot open the log: " + why;
+    return nullptr;
+  }
+  auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
+  if (!*file) {
+    if (error) *error = path + ": cannot open the log: " + std::strerror(errno);
+    return nullptr;
+  }
+  // A pipe cannot be read ahead and rewound: its format is found from its first line.
+  if (!io::check_input_file(path, false).empty()) {
+    return TextLogFrameSource::from_stream(std::move(file), path, require_time, error);
+  }
+  std::string head(can::kLogFormatProbeBytes, '\0');
+  file->read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(file->gcount()));
+  const can::LogFormat format = can::detect_log_format(head);
+  if (const std::string why = refusal(format); !why.empty()) {
+    if (error) *error = path + ": " + why;
+    return nullptr;
+  }
+  if (can::is_converted_format(format)) return ConvertedLogFrameSource::open(path, format, error);
+  file->clear();
+  file->seekg(0);
+  return std::make_unique<TextLogFrameSource>(std::move(file), path, format,
+                                              can::make_log_line_parser(format, require_time));
+}
+
+}  // namespace vmass::runtime

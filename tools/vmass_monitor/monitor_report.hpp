@@ -1,0 +1,29 @@
+// The report vmass-monitor prints: what vmassd last published on LCM, laid out for an
+// 80-column terminal. Each line is a label column (10 characters) and items separated by three
+// blanks; items that do not fit continue on the next line under the first item, and an item
+// longer than a whole line (a long input path) is shortened in its middle with "...".
+//
+// Pure: no LCM traffic, no terminal; thread-safe.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <vmass/mass_estimate_t.hpp>
+#include <vmass/status_t.hpp>
+
+namespace vmass::monitor {
+
+constexpr std::size_t kReportWidth = 80;
+
+/// `label` padded to the label column, then the items wrapped at `width` columns.
+std::string wrap_items(std::string_view label, const std::vector<std::string>& items,
+                       std::size_t width = kReportWidth);
+
+/// The whole report; null messages print as "(no ... received)".
+std::string monitor_report(const std::string& url, double estimate_hz, double status_hz,
+                           const vmass::mass_estimate_t* estimate, const vmass::status_t* status);
+
+}  // namespace vmass::monitor

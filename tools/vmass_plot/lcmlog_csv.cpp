@@ -1,0 +1,138 @@
+// vmass-lcmlog-csv: what vmassd published, recorded by lcm-logger (or vmassd --lcm-url
+// file://RUN.lcmlog?mode=w), as CSV files vmass-plot plots. Read with LCM's own log reader
+// (lcm::LogFile); the messages decoded with the generated vmass types.
+//
+//   vmass-lcmlog-csv LOG [--estimates CSV] [--status CSV] [--estimate-channel C]
+//                    [--status-channel C]
+//
+// The estimates CSV has vmass-replay's columns and number formats (docs/formats.md), so a
+// recording of vmassd over a log compares byte for byte with vmass-replay --out over the same
+// log; a row before the first estimate (mass_known false) leaves its mass cells empty. The
+// status CSV has one row per status message: time_s, uptime_s, state, version, mass_kg, ticks,
+// tick_overruns, jitter_p99_us, frames_received, frames_decoded, frames_malformed,
+// inputs_valid (of num_inputs), num_inputs. Exit codes: 0 ok, 1 a CSV cannot be written, 2 usage
+// or a file that is not an LCM log; a message that does not decode is counted and skipped.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+#include <vmass/mass_estimate_t.hpp>
+#include <vmass/status_t.hpp>
+
+#include "exit_code.hpp"
+
+namespace {
+
+using vmass::tools::kExitFailure;
+using vmass::tools::kExitOk;
+using vmass::tools::kExitUsage;
+
+struct Options {
+  std::string log, estimates_csv, status_csv;
+  std::string estimate_channel = "VMASS_ESTIMATE", status_channel = "VMASS_STATUS";
+};
+
+struct Counts {
+  long estimates = 0, statuses = 0, undecodable = 0, other = 0;
+};
+
+using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+File open_csv(const std::string& path, const char* header) {
+  if (path.empty()) return {nullptr, &std::fclose};
+  File f(std::fopen(path.c_str(), "w"), &std::fclose);
+  if (f) std::fprintf(f.get(), "%s\n", header);
+  return f;
+}
+
+/// The row vmass-replay writes for the same estimate (vmass::EstimateCsvWriter::row).
+void write_estimate(std::FILE* f, const vmass::mass_estimate_t& e) {
+  char mass[160] = ",,,";
+  char std_kg[32] = "";
+  char initial[32] = "";
+  if (e.mass_known) {
+    std::snprintf(mass, sizeof mass, "%.3f,%.3f,%.3f,%.3f", e.mass_kg, e.mass_ci_low_kg,
+                  e.mass_ci_high_kg, e.mu_n);
+    std::snprintf(std_kg, sizeof std_kg, "%.3f", e.mass_std_kg);
+    std::snprintf(initial, sizeof initial, "%.3f", e.initial_mass_kg);
+  }
+  std::fprintf(f, "%.2f,%s,%s,%s,%s,%lld,%lld,%.5f,%.5f,%s\n", static_cast<double>(e.utime) * 1e-6,
+               mass, e.status_name.c_str(), std_kg, e.reason_name.c_str(),
+               static_cast<long long>(e.longitudinal_accepted),
+               static_cast<long long>(e.lateral_accepted), e.longitudinal_availability,
+               e.lateral_availability, initial);
+}
+
+void write_status(std::FILE* f, const vmass::status_t& s) {
+  int valid = 0;
+  for (bool v : s.input_valid) valid += v ? 1 : 0;
+  std::fprintf(f, "%.2f,%.3f,%s,%s,%.3f,%lld,%lld,%.1f,%lld,%lld,%lld,%d,%d\n",
+               static_cast<double>(s.utime) * 1e-6, s.uptime_s, s.state_name.c_str(),
+               s.version.c_str(), s.mass_kg, static_cast<long long>(s.ticks),
+               static_cast<long long>(s.tick_overruns), s.jitter_p99_us,
+               static_cast<long long>(s.frames_received), static_cast<long long>(s.frames_decoded),
+               static_cast<long long>(s.frames_malformed), valid, s.num_inputs);
+}
+
+/// Decodes one event into `msg`; false (counted) when it does not decode.
+template <typename Message>
+bool decode(const lcm::LogEvent& event, Message* msg, Counts* counts) {
+  if (msg->decode(event.data, 0, event.datalen) == event.datalen) return true;
+  ++counts->undecodable;
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vmass-lcmlog-csv: vmassd's estimates and status from an LCM log, as CSV"};
+  Options o;
+  app.add_option("log", o.log, "LCM log (lcm-logger)")->required();
+  app.add_option("--estimates", o.estimates_csv, "write the estimates here (vmass-replay's CSV)");
+  app.add_option("--status", o.status_csv, "write the status messages here");
+  app.add_option("--estimate-channel", o.estimate_channel, "default VMASS_ESTIMATE");
+  app.add_option("--status-channel", o.status_channel, "default VMASS_STATUS");
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
+
+  lcm::LogFile log(o.log, "r");
+  const lcm::LogEvent* event = log.good() ? log.readNextEvent() : nullptr;
+  if (event == nullptr) {
+    std::cerr << "vmass-lcmlog-csv: " << o.log << ": not an LCM log, or empty\n";
+    return kExitUsage;
+  }
+  File est = open_csv(o.estimates_csv,
+                      "time_s,mass_kg,mass_ci_low_kg,mass_ci_high_kg,mu_n,status,mass_std_kg,"
+                      "reason,longitudinal_pairs,lateral_pairs,longitudinal_availability,"
+                      "lateral_availability,initial_mass_kg");
+  File st = open_csv(o.status_csv,
+                     "time_s,uptime_s,state,version,mass_kg,ticks,tick_overruns,jitter_p99_us,"
+                     "frames_received,frames_decoded,frames_malformed,inputs_valid,num_inputs");
+  if ((!o.estimates_csv.empty() && !est) || (!o.status_csv.empty() && !st)) {
+    std::cerr << "vmass-lcmlog-csv: cannot write the CSV\n";
+    return kExitFailure;
+  }
+  Counts counts;
+  vmass::mass_estimate_t e;
+  vmass::status_t s;
+  for (; event != nullptr; event = log.readNextEvent()) {
+    if (event->channel == o.estimate_channel) {
+      if (!decode(*event, &e, &counts)) continue;
+      ++counts.estimates;
+      if (est) write_estimate(est.get(), e);
+    } else if (event->channel == o.status_channel) {
+      if (!decode(*event, &s, &counts)) continue;
+      ++counts.statuses;
+      if (st) write_status(st.get(), s);
+    } else {
+      ++counts.other;
+    }
+  }
+  const bool written = (!est || std::fflush(est.get()) == 0) && (!st || std::fflush(st.get()) == 0);
+  std::cerr << "vmass-lcmlog-csv: " << o.log << ": " << counts.estimates << " estimates, "
+            << counts.statuses << " status messages, " << counts.other << " on other channels, "
+            << counts.undecodable << " that do not decode\n";
+  return written ? kExitOk : kExitFailure;
+}
