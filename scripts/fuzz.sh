@@ -14,9 +14,15 @@ cd "$repo"
 
 seconds=${1:-600}
 shift || true
+all=(fuzz_dbc_parser fuzz_candump_line fuzz_decoder fuzz_config fuzz_state)
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_dbc_parser fuzz_candump_line fuzz_decoder fuzz_config
-                                     fuzz_state)
+[ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
+for t in "${targets[@]}"; do
+  case " ${all[*]} " in
+    *" $t "*) ;;
+    *) echo "fuzz: no target '$t' (one of: ${all[*]})" >&2; exit 2 ;;
+  esac
+done
 
 cmake --preset fuzz > /dev/null
 cmake --build --preset fuzz -j "${VMASS_FUZZ_JOBS:-$(nproc)}"
