@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config git clang-format clang-tidy
+  # libFuzzer and the sanitizer runtimes for clang-14 (the `fuzz` preset, scripts/fuzz.sh)
+  clang-14 libclang-rt-14-dev
   # libraries
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libsystemd-dev
   libboost-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs everything, checks the format, builds with warnings as errors, runs clang-tidy and
-# every test (what CI runs).
+# every test, then a 20 s smoke run of each fuzz target (what CI runs).
 #   scripts/test.sh            (from anywhere; run as root or with sudo rights for apt)
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -14,3 +14,4 @@ cmake --preset ci
 cmake --build --preset ci -j "$(nproc)"
 bash scripts/check-tidy.sh build/ci       # clang-tidy: bug-finding checks, functions <= 80 lines
 ctest --preset ci -j "$(nproc)"           # includes core_purity and the exit-code convention
+bash scripts/fuzz.sh 20                   # libFuzzer smoke run: 20 s per target (docs/fuzzing.md)

@@ -341,6 +341,17 @@ bool Parser::read_value_pairs(std::vector<ValueDescription>& out, const char* st
     double v = 0.0;
     if (!read_double(v, "raw value or ';'")) return false;
     ValueDescription d;
+    // The key is an int64: a value outside [-2^63, 2^63) cannot be converted (undefined
+    // behaviour, found by fuzz_dbc_parser) and describes no raw value that key could hold.
+    constexpr double kInt64Bound = 9223372036854775808.0;  // 2^63, exact as a double
+    if (!(v >= -kInt64Bound && v < kInt64Bound)) {
+      char shown[32];
+      std::snprintf(shown, sizeof shown, "%g", v);
+      deviation(statement_line_, std::string(statement) + " value " + shown +
+                                     " is outside the 64-bit integer range; left out");
+      if (!read_string(d.text, "value description")) return false;
+      continue;
+    }
     d.value = static_cast<std::int64_t>(v);
     if (static_cast<double>(d.value) != v) {
       deviation(statement_line_, std::string(statement) + " value " + std::to_string(v) +

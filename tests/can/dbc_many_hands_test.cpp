@@ -5,6 +5,7 @@
 // bits cannot carry are reported. Expected diagnostics are written out by hand.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 
 #include "vmass/can/dbc.hpp"
@@ -142,6 +143,34 @@ TEST(DbcManyHands, MultiplexerValuesBeyondTheSwitch) {
   EXPECT_EQ(lines(wide), std::vector<std::string>{
                              "w.dbc:3: warning: signal P of message A can never be present: its "
                              "multiplexer value 4 exceeds what switch S (2 bits) can hold"});
+}
+
+// Found by fuzz_dbc_parser (UBSan: 1e+53 converted to int64): a value description's raw value
+// beyond what the int64 key holds is reported and left out; the others load.
+TEST(DbcManyHands, ValueDescriptionsBeyondTheInt64RangeAreLeftOut) {
+  const char* text = R"(BO_ 1 A: 8 E
+ SG_ S : 0|64@1+ (1,0) [0|0] "" E
+VAL_ 1 S 1e53 "huge" -9223372036854775808 "min" 18446744073709551615 "SNA" -1e19 "below" 2 "two" ;
+)";
+  const DbcParseResult r = parse_dbc(text, "v.dbc");
+  EXPECT_EQ(lines(r),
+            (std::vector<std::string>{
+                "v.dbc:3: warning: VAL_ value 1e+53 is outside the 64-bit integer range; left out",
+                "v.dbc:3: warning: VAL_ value 1.84467e+19 is outside the 64-bit integer range; "
+                "left out",
+                "v.dbc:3: warning: VAL_ value -1e+19 is outside the 64-bit integer range; left "
+                "out"}))
+      << dump(r);
+  ASSERT_EQ(r.database.messages.size(), 1u);
+  const std::vector<ValueDescription>& values = r.database.messages[0].signals[0].values;
+  ASSERT_EQ(values.size(), 2u);
+  EXPECT_EQ(values[0].value, INT64_MIN);
+  EXPECT_EQ(values[0].text, "min");
+  EXPECT_EQ(values[1].value, 2);
+  EXPECT_EQ(values[1].text, "two");
+  DbcParseOptions strict;
+  strict.strict = true;
+  EXPECT_EQ(parse_dbc(text, "v.dbc", strict).error_count(), 3);
 }
 
 TEST(DbcManyHands, ScalingRangesAndNamesThatCannotBeMeant) {
