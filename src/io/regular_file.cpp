@@ -81,4 +81,14 @@ std::string check_input_file(const std::string& path, bool allow_fifo) {
   return kind_of(st.st_mode);
 }
 
+std::unique_ptr<std::ifstream> open_input_stream(const std::string& path, std::string_view what,
+                                                 std::string* error) {
+  std::string why = check_input_file(path, true);
+  auto file = why.empty() ? std::make_unique<std::ifstream>(path, std::ios::binary) : nullptr;
+  if (file && !*file) why = std::strerror(errno);
+  if (why.empty()) return file;
+  if (error) *error = path + ": cannot open the " + std::string(what) + ": " + why;
+  return nullptr;
+}
+
 }  // namespace vmass::io

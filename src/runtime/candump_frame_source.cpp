@@ -1,7 +1,5 @@
 #include "vmass/runtime/candump_frame_source.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -18,15 +16,8 @@ std::unique_ptr<CandumpFrameSource> CandumpFrameSource::open(const std::string& 
                                                              std::string* error) {
   // A regular file or a pipe (candump -l | vmassd --replay /dev/stdin); never a directory or a
   // device such as /dev/zero.
-  if (const std::string why = io::check_input_file(path, true); !why.empty()) {
-    if (error) *error = path + ": cannot open the log: " + why;
-    return nullptr;
-  }
-  auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
-  if (!*file) {
-    if (error) *error = path + ": cannot open the log: " + std::strerror(errno);
-    return nullptr;
-  }
+  std::unique_ptr<std::ifstream> file = io::open_input_stream(path, "log", error);
+  if (!file) return nullptr;
   return std::unique_ptr<CandumpFrameSource>(new CandumpFrameSource(std::move(file), path));
 }
 

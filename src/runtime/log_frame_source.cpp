@@ -1,7 +1,5 @@
 #include "vmass/runtime/log_frame_source.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 
 #include "vmass/io/regular_file.hpp"
@@ -46,15 +44,8 @@ std::unique_ptr<LogFrameSource> open_log_frame_source(const std::string& path, s
                                                       bool require_time) {
   // A regular file or a pipe (candump -l | vmassd --replay /dev/stdin); never a directory or a
   // device such as /dev/zero.
-  if (const std::string why = io::check_input_file(path, true); !why.empty()) {
-    if (error) *error = path + ": cannot open the log: " + why;
-    return nullptr;
-  }
-  auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
-  if (!*file) {
-    if (error) *error = path + ": cannot open the log: " + std::strerror(errno);
-    return nullptr;
-  }
+  std::unique_ptr<std::ifstream> file = io::open_input_stream(path, "log", error);
+  if (!file) return nullptr;
   // A pipe cannot be read ahead and rewound: its format is found from its first line.
   if (!io::check_input_file(path, false).empty()) {
     return TextLogFrameSource::from_stream(std::move(file), path, require_time, error);

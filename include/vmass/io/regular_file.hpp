@@ -10,11 +10,16 @@
 //                                              allowed, a FIFO or pipe, e.g. /dev/stdin), else
 //                                              why not ("is a directory", "is a character
 //                                              device", ...)
+//   open_input_stream(path, what, error)       a stream on a file check_input_file accepts
+//                                              (FIFOs too), or null and "path: cannot open
+//                                              the <what>: why"
 //
 // Thread-safety: reentrant free functions (system calls only).
 #pragma once
 
 #include <cstddef>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -40,5 +45,10 @@ FileText read_regular_file(const std::string& path, std::size_t max_bytes, std::
 
 /// "" when path can be opened for streaming input, else why not (see the header comment).
 std::string check_input_file(const std::string& path, bool allow_fifo);
+
+/// A binary input stream on path, a regular file or a FIFO (a log read as it streams); null and
+/// *error "path: cannot open the <what>: why" otherwise.
+std::unique_ptr<std::ifstream> open_input_stream(const std::string& path, std::string_view what,
+                                                 std::string* error);
 
 }  // namespace vmass::io
