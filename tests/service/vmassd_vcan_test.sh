@@ -93,6 +93,21 @@ YAML
   [ "$rc" = 0 ] || exit "$rc"
 
   # ------------------------------------------------------------------ phase 2
+  # capture FILE: start candump on vcan0 into FILE and return once it records. A fixed sleep
+  # was not enough on a loaded CI machine (the VM is emulated): candump bound its socket after
+  # the drive had started and missed its first 84 frames. So a marker frame (an id outside the
+  # DBC) is sent until it shows up in FILE; a large receive buffer keeps a starved candump from
+  # dropping frames later.
+  marker="7FF#CA"
+  capture() {
+    stdbuf -oL candump -L -r 8388608 vcan0 > "$1" &
+    dump=$!
+    for _ in $(seq 200); do
+      cansend vcan0 "$marker"; sleep 0.05
+      grep -q "$marker" "$1" && return 0
+    done
+    echo "candump did not start recording"; return 1
+  }
   sim=$out/sim
   # candump writes to RAM: writing to the VM's shared folder is slow enough to lose frames.
   mkdir -p "$out/ram" && mount -t tmpfs -o size=64m tmpfs "$out/ram"
@@ -102,23 +117,20 @@ YAML
   ready "$out/vmassd_drive.log"
   sleep 0.5
   # candump stamps frames with the same kernel receive time as vmassd's socket.
-  candump -L vcan0 > "$out/ram/captured1.log" &
-  dump=$!
-  sleep 0.2
+  capture "$out/ram/captured1.log"
   canplayer -I "$sim/part1.log" vcan0=can0
   sleep 0.2; kill "$dump"; wait "$dump" || true
   ip link set vcan0 down; echo "vcan0 down"; sleep 1
   ip link set vcan0 up; echo "vcan0 up"
   sleep 0.5   # vmassd's reader notices (ENETDOWN is reported on its next read)
-  candump -L vcan0 > "$out/ram/captured2.log" &
-  dump=$!
-  sleep 0.2
+  capture "$out/ram/captured2.log"
   canplayer -I "$sim/part2.log" vcan0=can0
   sleep 2; kill "$dump"; wait "$dump" || true   # 2 s: the daemon's reader catches up
   kill -TERM "$pid"
   rc=0; wait "$pid" || rc=$?
   echo "vmassd (phase 2) exit status $rc"
-  cp "$out/ram/captured1.log" "$out/ram/captured2.log" "$out/"
+  # The handshake markers are not part of the drive (vmassd's kernel filter drops their id).
+  for f in captured1.log captured2.log; do grep -v "$marker" "$out/ram/$f" > "$out/$f" || true; done
   umount "$out/ram"
   exit "$rc"
 fi
