@@ -346,13 +346,16 @@ void log_stop(const DaemonStatus& final_status, bool saved, const LcmPublisher& 
   spdlog::info(
       "stopped: {}{}; {} estimates published, {} publish failures, {} queue drops, {} input "
       "records late, jitter p50/p99/max {:.0f}/{:.0f}/{:.0f} us; input clock: {} reordered, {} "
-      "too late, {} jumps",
+      "too late, {} jumps; frames: {} received, {} decoded, {} unknown, {} malformed, {} "
+      "dropped, {} bus errors, {} reopens",
       daemon::summary_line(final_status), saved ? ", state saved" : "",
       publisher.estimates_published(), final_status.publish_failures,
       final_status.publish_queue_drops, shared.late_records.load(),
       final_status.timing.jitter_p50_us, final_status.timing.jitter_p99_us,
       final_status.timing.jitter_max_us, final_status.frames_reordered,
-      final_status.frames_late_dropped, final_status.time_jumps);
+      final_status.frames_late_dropped, final_status.time_jumps, final_status.frames_received,
+      final_status.frames_decoded, final_status.frames_unknown, final_status.frames_malformed,
+      final_status.frames_dropped, final_status.bus_errors, final_status.source_reopens);
 }
 
 /// 0 after a good run; 1 when it failed: the recording could not be read to its end, or every
