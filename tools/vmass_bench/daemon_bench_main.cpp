@@ -198,6 +198,7 @@ int main(int argc, char** argv) {
   std::thread feeder([&] { feed->run(sv[0], stop); });
   std::this_thread::sleep_for(std::chrono::duration<double>(o.warmup_s));
   const auto before = bench::read_thread_cpu(pid);
+  const bench::Memory memory_at_start = bench::read_memory(pid);
   const auto t0 = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(o.seconds));
   const auto after = bench::read_thread_cpu(pid);
@@ -223,8 +224,9 @@ int main(int argc, char** argv) {
   const double sent = static_cast<double>(s.log_frames + s.filler_frames);
   const double run_s = std::max(1e-3, s.seconds);
   std::cout << "{\"window_s\": " << window_s << ", \"cpu_percent\": " << cpu_percent
-            << ", \"threads\": " << threads << ", \"rss_kb\": " << memory.rss_kb
-            << ", \"hwm_kb\": " << memory.hwm_kb << ", \"frames_per_s\": " << sent / run_s
+            << ", \"threads\": " << threads << ", \"rss_start_kb\": " << memory_at_start.rss_kb
+            << ", \"rss_kb\": " << memory.rss_kb << ", \"hwm_kb\": " << memory.hwm_kb
+            << ", \"frames_per_s\": " << sent / run_s
             << ", \"log_frames_per_s\": " << static_cast<double>(s.log_frames) / run_s
             << ", \"filler_frames_per_s\": " << feed->filler_frames_per_s()
             << ", \"frames_dropped\": " << s.dropped << ", \"load_average\": " << load << ", "
