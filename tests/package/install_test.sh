@@ -17,8 +17,11 @@ DESTDIR=$out/root cmake --install "$build" --prefix /usr/local >"$out/install.lo
   fail "install: $(tail -5 "$out/install.log")"
 prefix=$out/root/usr/local
 
+# A sanitizer build installs instrumented static libraries: the outside project links with
+# the same -fsanitize flags (OUTSIDE_LDFLAGS, set by tests/package/CMakeLists.txt).
 cmake -S "$source/tests/package/outside" -B "$out/outside" -G Ninja \
-  -DCMAKE_PREFIX_PATH="$prefix" >"$out/outside.log" 2>&1 ||
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_EXE_LINKER_FLAGS="${OUTSIDE_LDFLAGS:-}" \
+  >"$out/outside.log" 2>&1 ||
   fail "find_package(vmass): $(tail -20 "$out/outside.log")"
 cmake --build "$out/outside" >>"$out/outside.log" 2>&1 || fail "build: $(tail -20 "$out/outside.log")"
 "$out/outside/outside" >"$out/outside.txt" || fail "outside program: $(cat "$out/outside.txt")"

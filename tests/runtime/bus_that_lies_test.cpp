@@ -201,7 +201,13 @@ TEST_F(BusThatLies, FrozenReplayedAndSpoofedFramesAreRefused) {
       continue;
     }
     if (speed && t >= 80.0 && t < 82.0) {  // replayed: frames from 40 s before, in place
-      can::CanFrame replay = old_speed[static_cast<std::size_t>((t - 40.0) * 100.0)];
+      // The recorded frame of 40 s before (by time: the message's rate is the DBC's, not 100 Hz;
+      // indexing as if it were read past the end, found by AddressSanitizer).
+      const auto earlier = std::lower_bound(
+          old_speed.begin(), old_speed.end(), f.time_us - 40'000'000,
+          [](const can::CanFrame& o, std::int64_t time_us) { return o.time_us < time_us; });
+      ASSERT_NE(earlier, old_speed.end());
+      can::CanFrame replay = *earlier;
       replay.time_us = f.time_us;
       tampered.push_back(replay);
       continue;

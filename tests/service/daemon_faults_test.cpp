@@ -27,7 +27,7 @@ class DaemonFaultTest : public test::DaemonProcessTest {
  protected:
   /// A signal at seeded random points of successive runs on one state file (each run restores
   /// what the one before saved); after each, the state file is absent (only while no run has
-  /// saved one yet) or loads; a run stopped by SIGTERM after start-up says it saved. Returns
+  /// saved one yet) or loads; a run stopped by SIGTERM after its first tick says it saved. Returns
   /// how many runs left a state that loads.
   int signal_at_random_points(const std::string& signal, int expected_rc, std::uint32_t seed) {
     const std::string config = write_config("daemon:\n  persist_interval_s: 0.1\n");
@@ -58,7 +58,11 @@ class DaemonFaultTest : public test::DaemonProcessTest {
       const service::StateLoad saved = service::load_state_file(state, fingerprint);
       EXPECT_EQ(saved.status, service::StateLoadStatus::kLoaded) << where << ": " << saved.error;
       const std::string log = read(run_name + ".log");
-      if (expected_rc == 0 && log.find("vmassd running") != std::string::npos) {
+      // Saved once it ran a tick: a signal between "vmassd running" and the first tick (seen
+      // under AddressSanitizer, whose start-up is slower) leaves the restored state as it was.
+      const bool ticked = log.find("vmassd running") != std::string::npos &&
+                          log.find("; 0 ticks") == std::string::npos;
+      if (expected_rc == 0 && ticked) {
         EXPECT_NE(log.find("state saved"), std::string::npos) << where << "\n" << log;
       }
       loaded += saved.status == service::StateLoadStatus::kLoaded;
