@@ -11,12 +11,24 @@ namespace {
 constexpr std::uint32_t kErrFlag = 0x20000000u;  // CAN_ERR_FLAG
 constexpr std::uint32_t kErrMask = 0x1FFFFFFFu;  // CAN_ERR_MASK
 
-int hex_value(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
+/// The value of each byte as a hex digit, -1 for a byte that is none: one load per digit
+/// instead of three range tests (the digits are most of a line).
+struct HexDigits {
+  std::int8_t value[256];
+  constexpr HexDigits() : value() {
+    for (int c = 0; c < 256; ++c) value[c] = -1;
+    for (int d = 0; d < 10; ++d) value['0' + d] = static_cast<std::int8_t>(d);
+    for (int d = 0; d < 6; ++d) {
+      value['A' + d] = static_cast<std::int8_t>(10 + d);
+      value['a' + d] = static_cast<std::int8_t>(10 + d);
+    }
+  }
+};
+constexpr HexDigits kHexDigits;
+
+int hex_value(char c) { return kHexDigits.value[static_cast<unsigned char>(c)]; }
+
+bool is_digit(char c) { return static_cast<unsigned>(c - '0') < 10u; }
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
@@ -27,25 +39,35 @@ CandumpLine corrupt(std::string* error, const char* why) {
 
 // Each part of a line: nullptr when it parsed, else why the line is corrupt.
 
+/// The decimal digits from line[*p] (*p moves past them all): how many, and in *value the number
+/// their first max_kept make (exact integer arithmetic; more digits are an error to the caller).
+std::size_t read_digits(std::string_view line, std::size_t* p, std::size_t max_kept,
+                        std::int64_t* value) {
+  const std::size_t begin = *p;
+  std::size_t q = begin;
+  std::int64_t v = 0;
+  for (; q < line.size() && is_digit(line[q]); ++q) {
+    if (q - begin < max_kept) v = v * 10 + (line[q] - '0');
+  }
+  *p = q;
+  *value = v;
+  return q - begin;
+}
+
 /// (SECONDS.FRACTION): 1..12 digits, then 6 or 9 fractional digits (9: nanoseconds).
 const char* parse_timestamp(std::string_view line, std::size_t* at, std::int64_t* time_us) {
   std::size_t p = *at;
   if (line[p] != '(') return "expected '(' opening the timestamp";
   ++p;
-  const std::size_t sec_begin = p;
-  while (p < line.size() && line[p] >= '0' && line[p] <= '9') ++p;
-  const std::size_t sec_digits = p - sec_begin;
+  std::int64_t sec = 0;
+  const std::size_t sec_digits = read_digits(line, &p, 12, &sec);
   if (sec_digits == 0 || sec_digits > 12) return "expected seconds in the timestamp";
   if (p >= line.size() || line[p] != '.') return "expected '.' in the timestamp";
   ++p;
-  const std::size_t frac_begin = p;
-  while (p < line.size() && line[p] >= '0' && line[p] <= '9') ++p;
-  const std::size_t frac_digits = p - frac_begin;
+  std::int64_t frac = 0;
+  const std::size_t frac_digits = read_digits(line, &p, 9, &frac);
   if (frac_digits != 6 && frac_digits != 9) return "timestamp needs 6 or 9 fractional digits";
   if (p >= line.size() || line[p] != ')') return "expected ')' after the timestamp";
-  std::int64_t sec = 0, frac = 0;
-  std::from_chars(line.data() + sec_begin, line.data() + sec_begin + sec_digits, sec);
-  std::from_chars(line.data() + frac_begin, line.data() + frac_begin + frac_digits, frac);
   if (frac_digits == 9) frac /= 1000;
   *time_us = sec * 1000000 + frac;
   *at = p + 1;

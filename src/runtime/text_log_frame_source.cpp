@@ -10,6 +10,14 @@ TextLogFrameSource::TextLogFrameSource(std::unique_ptr<std::istream> in, const s
       lines_(*in_, can::CandumpReader::kMaxLineBytes),
       parser_(std::move(parser)) {}
 
+TextLogFrameSource::TextLogFrameSource(std::unique_ptr<std::istream> in, io::LineReader lines,
+                                       const std::string& path, can::LogFormat format,
+                                       std::unique_ptr<can::LogLineParser> parser)
+    : LogFrameSource(path, format),
+      in_(std::move(in)),
+      lines_(std::move(lines)),
+      parser_(std::move(parser)) {}
+
 void TextLogFrameSource::set_read_error(const std::string& why) {
   if (problem().empty()) set_problem(path() + ": read error: " + why);
 }
@@ -32,12 +40,14 @@ std::unique_ptr<TextLogFrameSource> TextLogFrameSource::from_stream(
     if (error) *error = name + ": not a text CAN log (candump -l or screen output, ASC, TRC)";
     return nullptr;
   }
-  auto source =
-      std::make_unique<TextLogFrameSource>(std::move(in), name, format, std::move(parser));
-  source->line_ = std::move(first);
+  const std::string read_error = lines.error();
+  std::unique_ptr<TextLogFrameSource> source(
+      new TextLogFrameSource(std::move(in), std::move(lines), name, format, std::move(parser)));
+  source->first_line_ = std::move(first);
+  source->line_ = source->first_line_;
   source->have_line_ = !source->line_.empty();
   source->overlong_ = first_overlong;
-  if (!lines.error().empty()) source->set_read_error(lines.error());
+  if (!read_error.empty()) source->set_read_error(read_error);
   source->line_no_ = blank_lines;
   source->mutable_stats().lines = static_cast<std::uint64_t>(blank_lines);
   source->mutable_stats().comments = static_cast<std::uint64_t>(blank_lines);
@@ -68,7 +78,7 @@ FrameSource::Read TextLogFrameSource::read(can::CanFrame* frame, int /*timeout_m
     }
     switch (parser_->parse(line_, &record, &why_)) {
       case can::CandumpLine::kFrame:
-        interface_.assign(record.interface.data(), record.interface.size());
+        if (record.interface != interface_) interface_.assign(record.interface);
         count_frame(record.frame, line_no_);
         *frame = record.frame;
         return Read::kFrame;

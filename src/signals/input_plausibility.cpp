@@ -6,7 +6,6 @@
 namespace vmass::signals {
 namespace {
 
-constexpr std::size_t kRows = 4096;    ///< cross-check window: up to 4096 ticks
 constexpr double kMinRateDtS = 0.005;  ///< updates closer than this count as 5 ms apart
 constexpr double kMaxRateGapS = 1.0;   ///< after a longer gap the rate is not checked
 constexpr double kInf = 1e300;
@@ -47,7 +46,7 @@ Witness witness_of(Input in, const Sample& s) {
 }  // namespace
 
 InputPlausibility::InputPlausibility(const PlausibilityParams& params)
-    : params_(params), rows_(kRows) {}
+    : params_(params), rows_(kWindowRows) {}
 
 void InputPlausibility::reset() {
   tracks_.fill(Track{});
@@ -120,8 +119,8 @@ InputVerdict InputPlausibility::check_stuck(int i, const Sample& raw, const Samp
 }
 
 void InputPlausibility::push_row(const Sample& s) {
-  head_ = (head_ + 1) % rows_.size();
-  count_ = std::min(count_ + 1, rows_.size());
+  head_ = (head_ + 1) & (kWindowRows - 1);
+  count_ = std::min(count_ + 1, kWindowRows);
   Row& r = rows_[head_];
   r.t = s.time_us;
   r.speed = s.speed_mps;

@@ -115,6 +115,34 @@ TEST(Candump, CorruptLinesSayWhy) {
   EXPECT_NE(parse_error("(1.000000) can0 123#R9").find("remote"), std::string::npos);
 }
 
+TEST(Candump, TimestampsAreExactToTheMicrosecond) {
+  // Integer arithmetic: no rounding, whatever the magnitude (12 digits of seconds at most).
+  EXPECT_EQ(parse_ok("(999999999999.999999) can0 123#").frame.time_us, 999999999999999999);
+  EXPECT_EQ(parse_ok("(999999999999.999999999) can0 123#").frame.time_us, 999999999999999999);
+  EXPECT_EQ(parse_ok("(000000000000.000001) can0 123#").frame.time_us, 1);
+  EXPECT_EQ(parse_ok("(0.000000999) can0 123#").frame.time_us, 0);  // nanoseconds truncated
+  EXPECT_EQ(parse_ok("(1700000000.100000) can0 123#").frame.time_us, 1700000000100000);
+  EXPECT_EQ(parse_error("(1234567890123.000000) can0 123#"), "expected seconds in the timestamp");
+  EXPECT_EQ(parse_error("(.000000) can0 123#"), "expected seconds in the timestamp");
+  EXPECT_EQ(parse_error("(1.0000000000) can0 123#"), "timestamp needs 6 or 9 fractional digits");
+  EXPECT_EQ(parse_error("(1.0000000) can0 123#"), "timestamp needs 6 or 9 fractional digits");
+  EXPECT_EQ(parse_error("(1,000000) can0 123#"), "expected '.' in the timestamp");
+  EXPECT_EQ(parse_error("(1.000000 can0 123#"), "expected ')' after the timestamp");
+}
+
+TEST(Candump, HexDigitsAreExactlyTheSixteenOfEitherCase) {
+  EXPECT_EQ(parse_ok("(1.000000) can0 1aF#0a9FfA").frame.id, 0x1AFu);
+  EXPECT_EQ(parse_ok("(1.000000) can0 1aF#0a9FfA").frame.data[2], 0xFA);
+  // The bytes beside the digit ranges, and bytes above 0x7F (a signed char), are not digits.
+  for (const char* bad : {"/", ":", "@", "G", "`", "g", "\xB0", "\xFF"}) {
+    EXPECT_EQ(parse_error(std::string("(1.000000) can0 12") + bad + "#00"),
+              "CAN id is not hexadecimal")
+        << bad;
+    EXPECT_EQ(parse_error(std::string("(1.000000) can0 123#0") + bad), "data is not hexadecimal")
+        << bad;
+  }
+}
+
 TEST(Candump, ReaderSkipsCountsAndReportsCorruptLines) {
   std::istringstream in(
       "(1.000000) can0 100#01\n"

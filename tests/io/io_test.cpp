@@ -6,9 +6,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -98,6 +101,82 @@ TEST(LineReader, AReadErrorIsNotTheEndOfTheFile) {
   std::string line;
   EXPECT_FALSE(lines.next(&line));
   EXPECT_EQ(lines.error(), "Is a directory");
+}
+
+TEST(LineReader, ALineOfTheBoundIsWholeAndTheLastLineNeedsNoNewline) {
+  std::istringstream in(std::string(10, 'b') + "\n" + std::string(10, 'd') + "\r\n" +
+                        std::string(11, 'c'));
+  LineReader lines(in, 10);
+  std::string_view line;
+  ASSERT_TRUE(lines.next(&line));
+  EXPECT_EQ(line, std::string(10, 'b'));
+  EXPECT_FALSE(lines.overlong());
+  ASSERT_TRUE(lines.next(&line));  // the '\r' is the line's 11th byte: the bound counts it
+  EXPECT_EQ(line, std::string(10, 'd'));
+  EXPECT_TRUE(lines.overlong());
+  ASSERT_TRUE(lines.next(&line));  // cut, although the input ends without a newline
+  EXPECT_EQ(line, std::string(10, 'c'));
+  EXPECT_TRUE(lines.overlong());
+  EXPECT_FALSE(lines.next(&line));
+  EXPECT_EQ(lines.line_number(), 3);
+}
+
+/// A stream that hands out its text a few bytes per read, as a pipe does.
+class TrickleBuf : public std::streambuf {
+ public:
+  TrickleBuf(std::string text, std::size_t chunk) : text_(std::move(text)), chunk_(chunk) {}
+
+ protected:
+  int_type underflow() override {
+    if (at_ >= text_.size()) return traits_type::eof();
+    const std::size_t n = std::min(chunk_, text_.size() - at_);
+    char* begin = text_.data() + at_;
+    setg(begin, begin, begin + n);
+    at_ += n;
+    return traits_type::to_int_type(*begin);
+  }
+
+ private:
+  std::string text_;
+  std::size_t chunk_;
+  std::size_t at_ = 0;
+};
+
+TEST(LineReader, LinesSplitAcrossTheStreamsReadsComeWhole) {
+  // Every line crosses a read (of 1 to 7 bytes), the long one many; '\r' and '\n' too.
+  const std::string text = "one\r\ntwo\n\nthree\n" + std::string(25, 'x') + "\r\nfour";
+  for (std::size_t chunk = 1; chunk <= 7; ++chunk) {
+    TrickleBuf buf(text, chunk);
+    std::istream in(&buf);
+    LineReader lines(in, 20);
+    std::vector<std::string> got;
+    std::vector<bool> cut;
+    std::string_view line;
+    while (lines.next(&line)) {
+      got.emplace_back(line);
+      cut.push_back(lines.overlong());
+    }
+    EXPECT_EQ(got,
+              (std::vector<std::string>{"one", "two", "", "three", std::string(20, 'x'), "four"}))
+        << chunk;
+    EXPECT_EQ(cut, (std::vector<bool>{false, false, false, false, true, false})) << chunk;
+    EXPECT_EQ(lines.error(), "");
+  }
+}
+
+TEST(LineReader, ManyLinesCrossTheReadersBlocks) {
+  // Far more than the reader's block: lines straddle every refill.
+  std::string text;
+  for (int i = 0; i < 100000; ++i) text += std::to_string(i) + (i % 3 ? "\n" : "\r\n");
+  std::istringstream in(text);
+  LineReader lines(in, 16);
+  std::string_view line;
+  int n = 0;
+  bool all_match = true;
+  while (lines.next(&line)) all_match = all_match && line == std::to_string(n++);
+  EXPECT_TRUE(all_match);
+  EXPECT_EQ(n, 100000);
+  EXPECT_EQ(lines.line_number(), 100000);
 }
 
 TEST(Excerpt, QuotesAtMost64BytesAndEscapesControlBytes) {

@@ -95,7 +95,7 @@ class CandumpReader {
   io::LineReader lines_;
   std::string source_;
   std::string read_error_;
-  std::string line_;
+  std::string_view line_;  ///< in lines_'s buffer
   std::string why_;
   std::int64_t line_no_ = 0;
   CandumpStats stats_;

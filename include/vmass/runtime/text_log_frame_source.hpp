@@ -11,6 +11,7 @@
 #include <istream>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "vmass/can/log_line_parser.hpp"
 #include "vmass/io/line_reader.hpp"
@@ -33,15 +34,22 @@ class TextLogFrameSource final : public LogFrameSource {
                                                          std::string* error);
 
  private:
+  /// `lines` reads *in (from_stream() hands over the reader that read the first line: it may
+  /// hold the lines after it).
+  TextLogFrameSource(std::unique_ptr<std::istream> in, io::LineReader lines,
+                     const std::string& path, can::LogFormat format,
+                     std::unique_ptr<can::LogLineParser> parser);
   bool next_line();
   void set_read_error(const std::string& why);
 
   std::unique_ptr<std::istream> in_;
   io::LineReader lines_;
-  bool have_line_ = false;  ///< line_ holds the first line, read ahead by from_stream()
+  bool have_line_ = false;  ///< line_ views first_line_, read ahead by from_stream()
   bool overlong_ = false;   ///< line_ was cut at can::CandumpReader::kMaxLineBytes
   std::unique_ptr<can::LogLineParser> parser_;
-  std::string line_, why_, interface_;
+  std::string first_line_;
+  std::string_view line_;  ///< the current line, in lines_'s buffer or first_line_
+  std::string why_, interface_;
   std::int64_t line_no_ = 0;
 };
 

@@ -98,8 +98,13 @@ class InputPlausibility {
   /// Stuck: input i's value from raw, its witness from `witnesses` (the inputs that passed).
   InputVerdict check_stuck(int i, const Sample& raw, const Sample& witnesses, TimeUs update_us);
   void push_row(const Sample& s);
+  /// Cross-check window: up to this many ticks. A power of two, so that the ring's index is a
+  /// mask: the cross-checks read ~200 rows a tick, and a division per row read made them a
+  /// quarter of a replay's time.
+  static constexpr std::size_t kWindowRows = 4096;
+  static_assert((kWindowRows & (kWindowRows - 1)) == 0, "kWindowRows must be a power of two");
   /// The i-th newest row (0: the newest); i < count_.
-  const Row& row(std::size_t i) const { return rows_[(head_ + rows_.size() - i) % rows_.size()]; }
+  const Row& row(std::size_t i) const { return rows_[(head_ - i) & (kWindowRows - 1)]; }
   InputVerdict speed_vs_accel();
   void update_scale(double delta_v, double integral, double dt_s);
   InputVerdict scale_verdict() const;
