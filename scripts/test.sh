@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything, checks the format, builds with warnings as errors, runs clang-tidy and
 # every test, a 20 s smoke run of each fuzz target, then the suite under AddressSanitizer + UBSan
-# and the service tests under ThreadSanitizer (what CI runs; about 45 minutes on 2 cores).
+# and the service tests under ThreadSanitizer (what CI runs; about 30 minutes on 2 cores).
 #   scripts/test.sh            (from anywhere; run as root or with sudo rights for apt)
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
