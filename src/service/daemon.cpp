@@ -28,6 +28,7 @@
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/service/receive_schedule.hpp"
 #include "vmass/service/state_plausibility.hpp"
 #include "vmass/service/state_store.hpp"
 #include "vmass/service/stop_signals.hpp"
@@ -75,6 +76,8 @@ std::optional<Plan> make_plan(const DaemonOptions& options, const ServiceSetting
   }
   plan.period_ns = static_cast<std::int64_t>(
       std::llround(1e9 / (plan.tick_rate_hz * (plan.max_speed ? 1.0 : plan.speed))));
+  plan.receive_period_ns =
+      ReceiveSchedule::drain_period_ns(settings.daemon.receive_period_ms, plan.period_ns);
   const double persist_ticks = settings.daemon.persist_interval_s * plan.tick_rate_hz / 10.0;
   plan.snapshot_every_ticks = static_cast<int>(std::clamp(persist_ticks, 1.0, 100.0));
   return plan;

@@ -75,6 +75,7 @@ struct Plan {
   std::int64_t mono0_ns = 0;   ///< CLOCK_MONOTONIC of tick 0
   bool has_first_record = false;
   int snapshot_every_ticks = 10;
+  std::int64_t receive_period_ns = 0;  ///< live drain period (ReceiveSchedule); 0: per frame
   RealtimeSettings realtime;
 
   /// T_k in the input clock: the grid every front end ticks on (runtime::TickGrid).

@@ -50,6 +50,9 @@ std::string DaemonSettings::validate() const {
   if (publish_queue < 16 || publish_queue > (1 << 20)) {
     return "daemon.publish_queue: must be in [16, 1048576]";
   }
+  if (!(receive_period_ms >= 0.0 && receive_period_ms <= 100.0)) {
+    return "daemon.receive_period_ms: must be in [0, 100] (0: read as frames arrive)";
+  }
   return realtime.validate();
 }
 
@@ -79,6 +82,7 @@ ServiceSettingsLoad load_service_settings(const Config& config) {
     daemon.read("persist_interval_s", &s.daemon.persist_interval_s);
     daemon.read("input_timeout_s", &s.daemon.input_timeout_s);
     daemon.read("publish_queue", &s.daemon.publish_queue);
+    daemon.read("receive_period_ms", &s.daemon.receive_period_ms);
     YamlReader rt = daemon.child("realtime");
     rt.read("priority", &s.daemon.realtime.priority);
     std::vector<double> cpus;

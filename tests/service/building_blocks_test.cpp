@@ -197,7 +197,7 @@ TEST(ServiceConfig, ReadsEveryKey) {
       "lcm:\n  url: memq://\n  estimate_channel: E\n  status_channel: S\n  pairs_channel: P\n"
       "  estimate_decimation: 5\n  status_period_s: 0.5\n  publish_pairs: true\n"
       "daemon:\n  can_interface: vcan0\n  state_file: /tmp/x.state\n  persist_interval_s: 2\n"
-      "  input_timeout_s: 0.2\n  publish_queue: 64\n"
+      "  input_timeout_s: 0.2\n  publish_queue: 64\n  receive_period_ms: 2.5\n"
       "  realtime:\n    priority: 40\n    cpu_affinity: [1, 3]\n    lock_memory: true\n"
       "can:\n  dbc: car.dbc\n");
   ASSERT_TRUE(r.ok()) << r.error;
@@ -209,6 +209,7 @@ TEST(ServiceConfig, ReadsEveryKey) {
   EXPECT_EQ(s.daemon.can_interface, "vcan0");
   EXPECT_EQ(s.daemon.persist_interval_s, 2.0);
   EXPECT_EQ(s.daemon.publish_queue, 64);
+  EXPECT_EQ(s.daemon.receive_period_ms, 2.5);
   EXPECT_EQ(s.daemon.realtime.priority, 40);
   EXPECT_EQ(s.daemon.realtime.cpu_affinity, (std::vector<int>{1, 3}));
   EXPECT_TRUE(s.daemon.realtime.lock_memory);
@@ -226,6 +227,10 @@ TEST(ServiceConfig, ErrorsNameFileLineAndKey) {
   r = load("daemon:\n  realtime:\n    cpu_affinity: [1.5]\n");
   EXPECT_NE(r.error.find("vmassd.yaml:20: daemon.realtime.cpu_affinity"), std::string::npos)
       << r.error;
+  r = load("daemon:\n  receive_period_ms: 250\n");
+  EXPECT_EQ(r.error,
+            "vmassd.yaml:19: daemon.receive_period_ms: must be in [0, 100] (0: read as frames "
+            "arrive)");
   r = load("lcm:\n  publish_pairs: maybe\n");
   EXPECT_NE(r.error.find("vmassd.yaml:19: lcm.publish_pairs: expected true or false"),
             std::string::npos)

@@ -17,6 +17,8 @@
 //     input_timeout_s: 0            # samples input: a value older than this is stale;
 //                                   #   0 = 5 ticks (5 / estimator.tick_rate_hz, as vmass-replay)
 //     publish_queue: 1024           # estimator -> publisher ring capacity, records
+//     receive_period_ms: 10         # a live bus is read this often, phase-locked to the ticks
+//                                   #   (0 = at every frame's arrival; <= 100)
 //     realtime:
 //       priority: 0                 # SCHED_FIFO priority of the estimator thread, 1..99; 0 = off
 //       cpu_affinity: []            # CPUs the estimator thread may run on ([] = any)
@@ -59,6 +61,11 @@ struct DaemonSettings {
   double persist_interval_s = 30.0;
   double input_timeout_s = 0.0;  ///< 0: 5 ticks
   int publish_queue = 1024;
+  /// A live socket is drained once per this period (a divisor of the tick period, one drain
+  /// just before each tick): the frames wait in the kernel with their kernel time stamps, so
+  /// the estimates do not change, and the receive thread wakes ~100 times a second instead of
+  /// at every burst of frames. 0: read as frames arrive.
+  double receive_period_ms = 10.0;
   RealtimeSettings realtime;
 
   std::string validate() const;
