@@ -34,6 +34,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bus_feed.hpp"
+#include "daemon_process.hpp"
 #include "proc_stats.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
@@ -72,29 +73,17 @@ pid_t start_daemon(const Options& o, int bus_fd) {
   const int one = 1;
   (void)setsockopt(bus_fd, SOL_SOCKET, SO_TIMESTAMP, &one, sizeof one);
   ::unlink(o.daemon_log.c_str());  // not a previous run's "vmassd running" line
-  const pid_t pid = fork();
-  if (pid != 0) return pid;
-  const int log = ::open(o.daemon_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (log < 0 || dup2(log, STDOUT_FILENO) < 0 || dup2(log, STDERR_FILENO) < 0) _exit(127);
-  // dup2 clears close-on-exec on the copy, but does nothing when bus_fd is 3 already.
-  if ((bus_fd == 3 ? fcntl(3, F_SETFD, 0) : dup2(bus_fd, 3)) < 0) _exit(127);
-  std::vector<char*> argv;
-  for (const std::string& a : o.command) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  execvp(argv[0], argv.data());
-  _exit(127);
+  return bench::start_command(o.command, o.daemon_log, bus_fd, 3);
 }
 
 bool alive(pid_t pid) { return waitpid(pid, nullptr, WNOHANG) == 0; }
-
-std::string read_text(const std::string& path);
 
 /// Waits up to 30 s for the daemon's "vmassd running" line (configuration read, input open):
 /// the bus is fed from then on, so that no frame is dropped while it starts. False when it died
 /// or never got there.
 bool wait_until_running(pid_t pid, const std::string& daemon_log) {
   for (int i = 0; i < 600 && alive(pid); ++i) {
-    if (read_text(daemon_log).find("vmassd running") != std::string::npos) return true;
+    if (bench::read_text(daemon_log).find("vmassd running") != std::string::npos) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return false;
@@ -112,13 +101,6 @@ bool stop_daemon(pid_t pid) {
   return false;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// The numbers of the daemon's final log line ("stopped: ... N ticks[, M overruns]; ... jitter
 /// p50/p99/max a/b/c us"), as JSON members (overruns null before a mass is known: the line
 /// leaves them out then); "" when absent.
@@ -126,9 +108,8 @@ std::string final_line_json(const std::string& log) {
   static const std::regex ticks(R"((\d+) ticks(, (\d+) overruns)?)");
   static const std::regex jitter(R"(jitter p50/p99/max (\d+)/(\d+)/(\d+) us)");
   std::smatch t, j;
-  const std::size_t stopped = log.rfind("stopped:");
-  if (stopped == std::string::npos) return "";
-  const std::string line = log.substr(stopped, log.find('\n', stopped) - stopped);
+  const std::string line = bench::stopped_line(log);
+  if (line.empty()) return "";
   if (!std::regex_search(line, t, ticks) || !std::regex_search(line, j, jitter)) return "";
   return "\"ticks\": " + t[1].str() +
          ", \"overruns\": " + (t[3].matched ? t[3].str() : std::string("null")) +
@@ -191,7 +172,7 @@ int main(int argc, char** argv) {
   if (!wait_until_running(pid, o.daemon_log)) {
     if (alive(pid)) stop_daemon(pid);
     std::cerr << "vmass-bench-daemon: the daemon did not start; its log (" << o.daemon_log << "):\n"
-              << read_text(o.daemon_log);
+              << bench::read_text(o.daemon_log);
     return 1;
   }
   std::atomic<bool> stop{false};
@@ -211,11 +192,11 @@ int main(int argc, char** argv) {
   const bool was_alive = alive(pid);
   const bool stopped = was_alive && stop_daemon(pid);
   close(sv[0]);
-  const std::string final_line = final_line_json(read_text(o.daemon_log));
+  const std::string final_line = final_line_json(bench::read_text(o.daemon_log));
   if (!stopped || final_line.empty()) {
     std::cerr << "vmass-bench-daemon: the daemon " << (was_alive ? "did not stop" : "died")
               << "; its log (" << o.daemon_log << "):\n"
-              << read_text(o.daemon_log);
+              << bench::read_text(o.daemon_log);
     return 1;
   }
   double cpu_percent = 0.0;

@@ -34,6 +34,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bus_feed.hpp"
+#include "daemon_process.hpp"
 #include "proc_stats.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
@@ -124,18 +125,7 @@ std::string make_stream(const Options& o, std::unique_ptr<SoakStream>* stream) {
 /// Starts the command with the pipe's read end as its standard input, its output and errors
 /// into the daemon log.
 pid_t start_daemon(const Options& o, int read_fd) {
-  const pid_t pid = fork();
-  if (pid != 0) return pid;
-  const int log = ::open(o.daemon_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (log < 0 || dup2(log, STDOUT_FILENO) < 0 || dup2(log, STDERR_FILENO) < 0 ||
-      dup2(read_fd, STDIN_FILENO) < 0) {
-    _exit(127);
-  }
-  std::vector<char*> argv;
-  for (const std::string& a : o.command) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  execvp(argv[0], argv.data());
-  _exit(127);
+  return bench::start_command(o.command, o.daemon_log, read_fd, STDIN_FILENO);
 }
 
 /// Writes all of buf; false when the daemon closed its end.
@@ -195,19 +185,11 @@ FeedResult feed(SoakStream& stream, const Options& o, int fd, pid_t pid) {
   return result;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// "name": N members for every "N words" counter of the daemon's final "stopped:" line;
 /// "" when the line is absent.
 std::string final_counters_json(const std::string& log) {
-  const std::size_t stopped = log.rfind("stopped:");
-  if (stopped == std::string::npos) return "";
-  const std::string line = log.substr(stopped, log.find('\n', stopped) - stopped);
+  const std::string line = bench::stopped_line(log);
+  if (line.empty()) return "";
   static const std::regex counter(
       R"((\d+) (ticks|overruns|estimates published|publish failures|queue drops|input records late|reordered|too late|jumps|received|decoded|unknown|malformed|dropped|bus errors|reopens))");
   std::ostringstream out;
@@ -272,7 +254,7 @@ int main(int argc, char** argv) {
   close(pipe_fds[1]);  // end of stream: the daemon finishes its replay and stops
   int status = 0;
   waitpid(pid, &status, 0);
-  const std::string log = read_text(o.daemon_log);
+  const std::string log = bench::read_text(o.daemon_log);
   const std::string counters = final_counters_json(log);
   if (!fed.complete || counters.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::cerr << "vmass-soak: the daemon "
