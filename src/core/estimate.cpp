@@ -40,6 +40,8 @@ std::string_view reason_name(StatusReason r) {
       return "restored";
     case StatusReason::kNoLoadSensor:
       return "no_load_sensor";
+    case StatusReason::kLoadChangeSuspected:
+      return "load_change_suspected";
   }
   return "unknown";
 }
@@ -56,6 +58,9 @@ std::string Estimate::describe_reason() const {
         sep = ", ";
       }
     }
+  }
+  if (reason == StatusReason::kLoadChangeSuspected) {
+    text += ": the pairs since the last stop disagree with the belief (the interval spans both)";
   }
   return text;
 }

@@ -68,4 +68,13 @@ bool LoadChangeMonitor::contradicts(const RegressorState& main) const {
          difference > params_.decide_sigma * std::hypot(c.mass_std_kg, main.mass_std_kg);
 }
 
+bool LoadChangeMonitor::suspects(const RegressorState& main) const {
+  if (!active_) return false;
+  const RegressorState c = challenger().state();
+  if (c.pairs_used == 0) return false;
+  const bool outside = main.mass_kg < c.ci_low_kg || main.mass_kg > c.ci_high_kg;
+  return outside &&
+         std::abs(c.mass_kg - main.mass_kg) > params_.min_change_fraction * empty_mass_kg_;
+}
+
 }  // namespace vmass

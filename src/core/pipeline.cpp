@@ -14,6 +14,7 @@ namespace {
 constexpr double kPlausibleLowPerEmpty = 0.9;
 constexpr double kPlausibleHighPerMax = 1.25;
 constexpr double kPlausibleHighPerEmptyWithoutMax = 3.0;
+constexpr double kNormal95 = 1.959963984540054;  ///< the normal distribution's 97.5 % quantile
 
 }  // namespace
 
@@ -328,6 +329,10 @@ void Pipeline::refresh_belief() {
                               prior_reason_ != StatusReason::kNoLoadSensor;
     estimate_.status = static_prior ? EstimateStatus::kStaticOnly : EstimateStatus::kInitialising;
     estimate_.reason = prior_reason_;
+  } else if (estimate_.plausible && load_monitor_.suspects(state)) {
+    span_challenger();
+    estimate_.status = EstimateStatus::kConverging;
+    estimate_.reason = StatusReason::kLoadChangeSuspected;
   } else {
     // Converged: more driving would not narrow it (the regression's part is small).
     const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);
@@ -350,6 +355,26 @@ double Pipeline::model_std_kg(double mass_kg) const {
   return relative * std::abs(mass_kg);
 }
 
+double Pipeline::published_half_width(const RegressorState& state) const {
+  // The regression's own 95 % quantile (Student t or normal); the normal one without a spread.
+  const double z = state.mass_std_kg > 0.0
+                       ? 0.5 * (state.ci_high_kg - state.ci_low_kg) / state.mass_std_kg
+                       : kNormal95;
+  return std::hypot(0.5 * (state.ci_high_kg - state.ci_low_kg), z * model_std_kg(state.mass_kg));
+}
+
+// A suspected load change (LoadChangeMonitor::suspects): the published interval spans the main
+// belief's and the challenger's, each with the model error, so that it holds whichever is right
+// until the monitor decides; the estimate stays the main belief's.
+void Pipeline::span_challenger() {
+  const RegressorState c = load_monitor_.challenger().state();
+  const double half_width = published_half_width(c);
+  estimate_.ci_low_kg = std::min(estimate_.ci_low_kg, c.mass_kg - half_width);
+  estimate_.ci_high_kg = std::max(estimate_.ci_high_kg, c.mass_kg + half_width);
+  estimate_.mass_std_kg = std::max(estimate_.mass_std_kg,
+                                   0.5 * (estimate_.ci_high_kg - estimate_.ci_low_kg) / kNormal95);
+}
+
 void Pipeline::publish_state(const RegressorState& state) {
   const VehicleParams& v = params_.vehicle;
   estimate_.plausible_low_kg = kPlausibleLowPerEmpty * v.empty_mass_kg;
@@ -365,11 +390,7 @@ void Pipeline::publish_state(const RegressorState& state) {
   if (!plausible && has_plausible_) return;  // hold the last plausible estimate
   has_plausible_ = has_plausible_ || plausible;
   const double model_std = model_std_kg(state.mass_kg);
-  // The regression's own 95 % quantile (Student t or normal); the normal one without a spread.
-  const double z = state.mass_std_kg > 0.0
-                       ? 0.5 * (state.ci_high_kg - state.ci_low_kg) / state.mass_std_kg
-                       : 1.959963984540054;
-  const double half_width = std::hypot(0.5 * (state.ci_high_kg - state.ci_low_kg), z * model_std);
+  const double half_width = published_half_width(state);
   estimate_.mass_kg = state.mass_kg;
   estimate_.mu_n = state.mu_n;
   estimate_.mass_model_std_kg = model_std;

@@ -126,6 +126,44 @@ TEST(NoLoadSensor, StartsFromEmptyPlusHalfTheCapacityAndLearns) {
   EXPECT_NEAR(pipeline.estimate().mass_kg, drive.mass_kg, 0.01 * drive.mass_kg);
 }
 
+// Given a car without a load sensor that stops for 10 s and drives on 300 kg heavier, the
+// interval spans the new mass as soon as the drive since the stop doubts the old belief
+// (load_change_suspected, never converged), before the new belief is adopted.
+TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
+  const PipelineParams p = no_load_sensor_params();
+  Pipeline pipeline(p);
+  testing::LongitudinalDrive before;
+  before.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  before.accel_noise_std_mps2 = 0.02;
+  before.force_noise_std_n = 60.0;
+  testing::LongitudinalDrive after = before;
+  after.mass_kg = before.mass_kg + 300.0;
+  after.seed = 2;
+  for (const Sample& s : testing::longitudinal_samples(before, p.vehicle, 0.0, 150.0, 15.0, 0.0)) {
+    pipeline.step(s);
+  }
+  ASSERT_NEAR(pipeline.estimate().mass_kg, before.mass_kg, 0.02 * before.mass_kg);
+  Sample stop = testing::longitudinal_samples(before, p.vehicle, 150.0, 150.01, 0.0, 0.0).front();
+  for (double t = 150.0; t < 160.0; t += 0.01) {
+    stop.time_us = from_seconds(t);
+    pipeline.step(stop);
+  }
+  long suspected = 0, suspected_and_covered = 0;
+  for (const Sample& s : testing::longitudinal_samples(after, p.vehicle, 160.0, 400.0, 15.0, 0.0)) {
+    pipeline.step(s);
+    const Estimate& e = pipeline.estimate();
+    if (e.reason != StatusReason::kLoadChangeSuspected) continue;
+    ++suspected;
+    suspected_and_covered += e.ci_low_kg <= after.mass_kg && after.mass_kg <= e.ci_high_kg;
+    EXPECT_EQ(e.status, EstimateStatus::kConverging);
+  }
+  EXPECT_GT(suspected, 100);  // a second of ticks at least
+  EXPECT_EQ(suspected_and_covered, suspected);
+  pipeline.flush();
+  EXPECT_EQ(pipeline.estimate().prior_reason, StatusReason::kLoadChanged);  // then decided
+  EXPECT_NEAR(pipeline.estimate().mass_kg, after.mass_kg, 0.02 * after.mass_kg);
+}
+
 TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
   PipelineParams p;
   p.vehicle = testing::test_vehicle();

@@ -1,6 +1,7 @@
 // Given a car without a load sensor, when the load changes at a stop, the challenger started
 // after that stop learns the new mass and contradicts the old belief; a short stop or an
-// unchanged load does not.
+// unchanged load does not. Before it may decide, a change is suspected as soon as the
+// challenger's own interval excludes the old belief.
 #include "vmass/core/load_change_monitor.hpp"
 
 #include <cmath>
@@ -93,6 +94,23 @@ TEST_P(LoadChangeMonitorTest, AShortStopStartsNoChallenger) {
   EXPECT_FALSE(m.active());
   offer_pairs(&m, 1900.0, 500, 4);
   EXPECT_FALSE(m.contradicts(belief(1600.0, 5.0)));
+}
+
+TEST_P(LoadChangeMonitorTest, AChangeIsSuspectedOnceTheChallengersIntervalExcludesTheBelief) {
+  LoadChangeMonitor m = make_monitor(GetParam());
+  EXPECT_FALSE(m.suspects(belief(1600.0, 5.0)));  // no challenger
+  stop_then_drive(&m, 0.0, 6.0);
+  EXPECT_FALSE(m.suspects(belief(1600.0, 5.0)));  // a challenger without pairs knows nothing
+  offer_pairs(&m, 1900.0, 100, 5);
+  const RegressorState c = m.challenger().state();
+  ASSERT_GT(c.ci_low_kg, 1600.0);                    // these pairs alone exclude 1600 kg ...
+  EXPECT_FALSE(m.contradicts(belief(1600.0, 5.0)));  // ... too few to decide ...
+  EXPECT_TRUE(m.suspects(belief(1600.0, 5.0)));      // ... enough to doubt
+  EXPECT_FALSE(m.suspects(belief(0.5 * (c.ci_low_kg + c.ci_high_kg), 5.0)));  // inside it
+  // A difference below min_change_fraction of the empty mass (45 kg) is no suspicion either.
+  EXPECT_FALSE(m.suspects(belief(c.mass_kg - 40.0, 5.0)));
+  m.dismiss();
+  EXPECT_FALSE(m.suspects(belief(1600.0, 5.0)));
 }
 
 INSTANTIATE_TEST_SUITE_P(BothRegressors, LoadChangeMonitorTest, ::testing::Values(false, true));

@@ -40,6 +40,8 @@ enum class StatusReason : std::uint8_t {
   kRestored,                  ///< state restored from a saved estimate
   kNoLoadSensor,              ///< no deflection sensor that carries the load (none, or a
                               ///< self-levelling axle): prior = empty + half the capacity
+  kLoadChangeSuspected,       ///< converging: since a stop, the drive disagrees with the belief
+                              ///< (LoadChangeMonitor::suspects); the interval spans both
 };
 
 std::string_view status_name(EstimateStatus s);

@@ -7,7 +7,11 @@
 // everything the earlier drive taught. When the two disagree beyond chance,
 //   |M_challenger - M_main| > decide_sigma sqrt(s_challenger^2 + s_main^2)
 //   and > min_change_fraction M_empty, after min_pairs pairs of the challenger,
-// the load changed at that stop: the challenger's belief becomes the estimate. A later stop
+// the load changed at that stop: the challenger's belief becomes the estimate. Before that, once
+// the challenger's own 95 % interval excludes the main estimate (by more than
+// min_change_fraction M_empty), the change is suspected: the pipeline then publishes an interval
+// that spans both beliefs (suspects()), since the drive since the stop says the main one may
+// no longer hold. A later stop
 // restarts the challenger; when nothing changed it simply agrees with the main belief and is
 // dropped at the next stop.
 //
@@ -48,6 +52,9 @@ class LoadChangeMonitor {
   /// True when the challenger now contradicts `main` (see the header); the caller then takes
   /// challenger() as its belief and calls dismiss().
   bool contradicts(const RegressorState& main) const;
+  /// True when the challenger's 95 % interval excludes `main`'s mass (see the header): a change
+  /// is likely but not yet decided.
+  bool suspects(const RegressorState& main) const;
   const MassRegressor& challenger() const;
   const RlsEstimator& challenger_rls() const { return rls_; }
   const BayesEstimator& challenger_bayes() const { return bayes_; }

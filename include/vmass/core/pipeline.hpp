@@ -141,6 +141,9 @@ class Pipeline {
   void refresh_belief();
   /// The regression's state into estimate_, with the model error and the plausibility check.
   void publish_state(const RegressorState& state);
+  /// Half the published 95 % interval of a belief: the regression's and the model error's.
+  double published_half_width(const RegressorState& state) const;
+  void span_challenger();
   /// mass_model_std_kg for a mass (see Estimate).
   double model_std_kg(double mass_kg) const;
 
