@@ -4,7 +4,8 @@
 // drives hold what a window kept as rows come and go must get right: windows that fill, empty
 // on invalid rows and refill; ticks on a 1 ms grid, so that rows are exactly window_s old;
 // windows longer than the ring of rows; NaN and infinite rows; values a billion times too
-// large that then leave the window (a plain running sum keeps their rounding).
+// large that then leave the window (a plain running sum keeps their rounding). And a tick
+// whose time goes back starts the windows anew.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <deque>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "vmass/signals/input_plausibility.hpp"
 
@@ -274,6 +276,26 @@ TEST(PlausibilityWindows, MatchAPlainRecomputationWithWindowsLongerThanTheRing) 
   EXPECT_GT(t.speed_faults, 1'000);
   EXPECT_GT(t.yaw_windows, 1'000);
   EXPECT_GT(t.yaw_faults, 100);
+}
+
+TEST(PlausibilityWindows, ATickWhoseTimeGoesBackStartsThemAnew) {
+  InputPlausibility p{cross_checks_only(1.0)};
+  TimeUs updates[kInputCount];
+  TimeUs t = 0;
+  std::vector<InputFault> faults;
+  for (int k = 0; k < 400; ++k) {
+    t += k == 200 ? -5'000'000 : 10'000;
+    Sample s;
+    s.time_us = t;
+    steady_turn(k, &s, 1'000);
+    s.set(Input::kYawRate, 0.4);  // disagrees with accel_y / speed
+    for (TimeUs& u : updates) u = t;
+    p.check(&s, updates);
+    faults.push_back(p.verdict(Input::kYawRate).fault);
+  }
+  EXPECT_EQ(faults[199], InputFault::kYawVsAccelY);
+  EXPECT_EQ(std::count(faults.begin() + 200, faults.begin() + 290, InputFault::kNone), 90);
+  EXPECT_EQ(faults[290], InputFault::kYawVsAccelY);  // 0.9 s of the new time: covered again
 }
 
 }  // namespace
