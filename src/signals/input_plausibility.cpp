@@ -46,15 +46,21 @@ Witness witness_of(Input in, const Sample& s) {
 }  // namespace
 
 InputPlausibility::InputPlausibility(const PlausibilityParams& params)
-    : params_(params), rows_(kWindowRows) {}
+    : params_(params), rows_(kWindowRows) {
+  speed_window_.window_us = static_cast<TimeUs>(params.speed_vs_accel_x.window_s * 1e6);
+  yaw_window_.window_us = static_cast<TimeUs>(params.yaw_rate_vs_accel_y.window_s * 1e6);
+  yaw_window_.min_speed = params.yaw_rate_vs_accel_y.min_speed_mps;
+}
 
 void InputPlausibility::reset() {
   tracks_.fill(Track{});
   verdicts_.fill(InputVerdict{});
   refused_last_tick_ = 0;
   scale_ = ScaleFit{};
-  head_ = 0;
+  newest_ = -1;
   count_ = 0;
+  speed_window_.open = false;
+  yaw_window_.open = false;
   has_slow_residual_ = false;
 }
 
@@ -119,9 +125,10 @@ InputVerdict InputPlausibility::check_stuck(int i, const Sample& raw, const Samp
 }
 
 void InputPlausibility::push_row(const Sample& s) {
-  head_ = (head_ + 1) & (kWindowRows - 1);
+  if (count_ == kWindowRows) forget_row(newest_ - static_cast<std::int64_t>(kWindowRows) + 1);
+  ++newest_;
   count_ = std::min(count_ + 1, kWindowRows);
-  Row& r = rows_[head_];
+  Row& r = rows_[static_cast<std::size_t>(newest_) & (kWindowRows - 1)];
   r.t = s.time_us;
   r.speed = s.speed_mps;
   r.accel_x = s.accel_x_mps2;
@@ -129,6 +136,109 @@ void InputPlausibility::push_row(const Sample& s) {
   r.yaw_rate = s.yaw_rate_radps;
   r.longitudinal = s.has(Input::kSpeed) && s.has(Input::kAccelX);
   r.lateral = s.has(Input::kSpeed) && s.has(Input::kAccelY) && s.has(Input::kYawRate);
+  const Row* previous = count_ >= 2 ? &row(1) : nullptr;
+  r.accel_x_area =
+      r.longitudinal && previous != nullptr && previous->longitudinal
+          ? 0.5 * (previous->accel_x + r.accel_x) * 1e-6 * static_cast<double>(r.t - previous->t)
+          : 0.0;
+  // Ticks come in time order; one that goes back starts the windows anew.
+  const bool time_went_back = previous != nullptr && r.t < previous->t;
+  extend_speed_window(time_went_back);
+  extend_yaw_window(time_went_back);
+}
+
+/// Row `seq`, the oldest, is about to be overwritten: the windows let go of it.
+void InputPlausibility::forget_row(std::int64_t seq) {
+  SpeedWindow& w = speed_window_;
+  if (w.open && w.first == seq) {
+    ++w.first;
+    w.area.remove(row_at(w.first).accel_x_area);
+  }
+  if (yaw_window_.open && yaw_window_.first == seq) drop_oldest_yaw_row();
+}
+
+void InputPlausibility::extend_speed_window(bool restart) {
+  SpeedWindow& w = speed_window_;
+  const Row& newest = row(0);
+  if (!newest.longitudinal) {
+    w.open = false;
+    return;
+  }
+  if (!w.open || restart) {  // a run starts: the newest row alone
+    w.open = true;
+    w.first = newest_;
+    w.area.clear();
+    return;
+  }
+  w.area.add(newest.accel_x_area);
+  while (w.first < newest_ && newest.t - row_at(w.first + 1).t >= w.window_us) {
+    ++w.first;
+    w.area.remove(row_at(w.first).accel_x_area);
+  }
+  if (!w.area.finite()) recompute_speed_sums();  // see extend_yaw_window
+}
+
+void InputPlausibility::extend_yaw_window(bool restart) {
+  YawWindow& w = yaw_window_;
+  const Row& newest = row(0);
+  if (!newest.lateral) {
+    w.open = false;
+    return;
+  }
+  if (!w.open || restart) {  // a run starts: empty, the newest row comes next
+    w.open = true;
+    w.first = newest_;
+    w.yaw_rate_sum.clear();
+    w.accel_y_sum.clear();
+    w.speed_sum.clear();
+    w.slow_rows = 0;
+    w.yaw_rate_spread.clear();
+    w.accel_y_spread.clear();
+  }
+  w.yaw_rate_sum.add(newest.yaw_rate);
+  w.accel_y_sum.add(newest.accel_y);
+  w.speed_sum.add(newest.speed);
+  w.slow_rows += newest.speed < w.min_speed ? 1 : 0;
+  w.yaw_rate_spread.push(newest_, newest.yaw_rate);
+  w.accel_y_spread.push(newest_, newest.accel_y);
+  while (w.first <= newest_ && newest.t - row_at(w.first).t > w.window_us) drop_oldest_yaw_row();
+  if (!(w.yaw_rate_sum.finite() && w.accel_y_sum.finite() && w.speed_sum.finite())) {
+    recompute_yaw_sums();  // a NaN or an infinity went in: it stays in the sum after it left
+  }
+}
+
+void InputPlausibility::drop_oldest_yaw_row() {
+  YawWindow& w = yaw_window_;
+  const Row& r = row_at(w.first);
+  w.yaw_rate_sum.remove(r.yaw_rate);
+  w.accel_y_sum.remove(r.accel_y);
+  w.speed_sum.remove(r.speed);
+  w.slow_rows -= r.speed < w.min_speed ? 1 : 0;
+  ++w.first;
+  w.yaw_rate_spread.drop_before(w.first);
+  w.accel_y_spread.drop_before(w.first);
+}
+
+// Exactly: newest row first, as a loop over the window adds them.
+void InputPlausibility::recompute_speed_sums() {
+  SpeedWindow& w = speed_window_;
+  double area = 0.0;
+  for (std::int64_t seq = newest_; seq > w.first; --seq) area += row_at(seq).accel_x_area;
+  w.area.set(area);
+}
+
+void InputPlausibility::recompute_yaw_sums() {
+  YawWindow& w = yaw_window_;
+  double sum_r = 0.0, sum_ay = 0.0, sum_v = 0.0;
+  for (std::int64_t seq = newest_; seq >= w.first; --seq) {
+    const Row& r = row_at(seq);
+    sum_r += r.yaw_rate;
+    sum_ay += r.accel_y;
+    sum_v += r.speed;
+  }
+  w.yaw_rate_sum.set(sum_r);
+  w.accel_y_sum.set(sum_ay);
+  w.speed_sum.set(sum_v);
 }
 
 InputVerdict InputPlausibility::speed_vs_accel() {
@@ -137,15 +247,11 @@ InputVerdict InputPlausibility::speed_vs_accel() {
     has_slow_residual_ = false;
     return scale_.ready ? scale_verdict() : InputVerdict{};
   }
-  const auto window_us = static_cast<TimeUs>(c.window_s * 1e6);
-  double integral = 0.0;
-  std::size_t i = 1;
-  for (; i < count_ && row(i).longitudinal && row(0).t - row(i - 1).t < window_us; ++i) {
-    integral += 0.5 * (row(i).accel_x + row(i - 1).accel_x) * 1e-6 *
-                static_cast<double>(row(i - 1).t - row(i).t);
-  }
-  if (row(0).t - row(i - 1).t < window_us) return {};  // not a whole window of history yet
-  const double delta_v = row(0).speed - row(i - 1).speed;
+  const SpeedWindow& w = speed_window_;
+  const Row& oldest = row_at(w.first);
+  if (row(0).t - oldest.t < w.window_us) return {};  // not a whole window of history yet
+  const double integral = w.area.value();
+  const double delta_v = row(0).speed - oldest.speed;
   const double residual = delta_v - integral;
   const double dt_s = 1e-6 * static_cast<double>(row(0).t - row(1).t);
   if (!has_slow_residual_) {
@@ -191,28 +297,15 @@ InputVerdict InputPlausibility::scale_verdict() const {
 InputVerdict InputPlausibility::yaw_vs_accel() {
   const YawAccelCheck& c = params_.yaw_rate_vs_accel_y;
   if (!c.enabled || count_ < 2 || !row(0).lateral) return {};
-  const auto window_us = static_cast<TimeUs>(c.window_s * 1e6);
-  double sum_r = 0.0, sum_ay = 0.0, sum_v = 0.0;
-  double r_min = kInf, r_max = -kInf, ay_min = kInf, ay_max = -kInf, v_min = kInf;
-  std::size_t n = 0;
-  for (; n < count_ && row(n).lateral && row(0).t - row(n).t <= window_us; ++n) {
-    const Row& r = row(n);
-    sum_r += r.yaw_rate;
-    sum_ay += r.accel_y;
-    sum_v += r.speed;
-    r_min = std::min(r_min, r.yaw_rate);
-    r_max = std::max(r_max, r.yaw_rate);
-    ay_min = std::min(ay_min, r.accel_y);
-    ay_max = std::max(ay_max, r.accel_y);
-    v_min = std::min(v_min, r.speed);
-  }
-  if (n < 2 || row(0).t - row(n - 1).t < window_us * 9 / 10) return {};  // window not covered
-  const double mean_r = sum_r / static_cast<double>(n);
-  const double mean_ay = sum_ay / static_cast<double>(n);
-  const double mean_v = sum_v / static_cast<double>(n);
-  const bool steady = v_min >= c.min_speed_mps && std::abs(mean_ay) >= c.min_accel_y_mps2 &&
-                      ay_max - ay_min <= c.steady_accel_y_mps2 &&
-                      r_max - r_min <= c.steady_yaw_rate_radps;
+  const YawWindow& w = yaw_window_;
+  const std::int64_t n = newest_ - w.first + 1;
+  if (n < 2 || row(0).t - row_at(w.first).t < w.window_us * 9 / 10) return {};  // not covered
+  const double mean_r = w.yaw_rate_sum.value() / static_cast<double>(n);
+  const double mean_ay = w.accel_y_sum.value() / static_cast<double>(n);
+  const double mean_v = w.speed_sum.value() / static_cast<double>(n);
+  const bool steady = w.slow_rows == 0 && std::abs(mean_ay) >= c.min_accel_y_mps2 &&
+                      w.accel_y_spread.spread() <= c.steady_accel_y_mps2 &&
+                      w.yaw_rate_spread.spread() <= c.steady_yaw_rate_radps;
   if (!steady) return {};
   const double residual = mean_r - mean_ay / mean_v;
   const double tolerance = c.tolerance_radps + c.tolerance_fraction * std::abs(mean_r);

@@ -39,7 +39,9 @@
 //                       a sign convention flipped in the mapping breaks it)
 //
 // A failing input is invalid in the Sample, with its verdict (input_verdict.hpp), and counted:
-// implausible() is the number of its updates refused. Allocates only at construction.
+// implausible() is the number of its updates refused. The two cross-checks keep their window's
+// sums and extremes as ticks come (O(1) a tick); ticks come in time order (one whose time goes
+// back starts the windows anew). Allocates only at construction.
 // Not thread-safe: the estimator thread owns it.
 #pragma once
 
@@ -50,6 +52,7 @@
 #include "vmass/core/sample.hpp"
 #include "vmass/signals/input_verdict.hpp"
 #include "vmass/signals/plausibility_params.hpp"
+#include "vmass/signals/sliding_stats.hpp"
 
 namespace vmass::signals {
 
@@ -88,8 +91,34 @@ class InputPlausibility {
   struct Row {  ///< one tick of the cross-check window
     TimeUs t = 0;
     double speed = 0.0, accel_x = 0.0, accel_y = 0.0, yaw_rate = 0.0;
+    double accel_x_area = 0.0;  ///< accel_x's trapezoid since the row before (both longitudinal)
     bool longitudinal = false;  ///< speed and accel_x valid
     bool lateral = false;       ///< speed, accel_y and yaw_rate valid
+  };
+  /// Cross-check window: up to this many ticks. A power of two, so that the ring's index is a
+  /// mask.
+  static constexpr std::size_t kWindowRows = 4096;
+  static_assert((kWindowRows & (kWindowRows - 1)) == 0, "kWindowRows must be a power of two");
+  /// The rows speed_vs_accel() looks at: [first, newest_] of the run of longitudinal rows that
+  /// ends at the newest one, `first` the newest row at least window_s old once there is one
+  /// (else the run's oldest). Kept as rows come, so that a tick costs O(1), not O(window); its
+  /// sums start from 0 with each run and do not drift (RunningSum).
+  struct SpeedWindow {
+    TimeUs window_us = 0;
+    bool open = false;  ///< the newest row is longitudinal
+    std::int64_t first = 0;
+    RunningSum area;  ///< the integral of accel_x over the window: of accel_x_area after first
+  };
+  /// The rows yaw_vs_accel() looks at: [first, newest_] of the run of lateral rows that ends at
+  /// the newest one, `first` its oldest row at most window_s old.
+  struct YawWindow {
+    TimeUs window_us = 0;
+    double min_speed = 0.0;
+    bool open = false;  ///< the newest row is lateral
+    std::int64_t first = 0;
+    RunningSum yaw_rate_sum, accel_y_sum, speed_sum;
+    std::int64_t slow_rows = 0;  ///< rows below min_speed
+    SlidingSpread yaw_rate_spread{kWindowRows}, accel_y_spread{kWindowRows};
   };
 
   /// Limits and rate of input i (valid in raw).
@@ -98,13 +127,17 @@ class InputPlausibility {
   /// Stuck: input i's value from raw, its witness from `witnesses` (the inputs that passed).
   InputVerdict check_stuck(int i, const Sample& raw, const Sample& witnesses, TimeUs update_us);
   void push_row(const Sample& s);
-  /// Cross-check window: up to this many ticks. A power of two, so that the ring's index is a
-  /// mask: the cross-checks read ~200 rows a tick, and a division per row read made them a
-  /// quarter of a replay's time.
-  static constexpr std::size_t kWindowRows = 4096;
-  static_assert((kWindowRows & (kWindowRows - 1)) == 0, "kWindowRows must be a power of two");
+  const Row& row_at(std::int64_t seq) const {
+    return rows_[static_cast<std::size_t>(seq) & (kWindowRows - 1)];
+  }
   /// The i-th newest row (0: the newest); i < count_.
-  const Row& row(std::size_t i) const { return rows_[(head_ - i) & (kWindowRows - 1)]; }
+  const Row& row(std::size_t i) const { return row_at(newest_ - static_cast<std::int64_t>(i)); }
+  void forget_row(std::int64_t seq);
+  void extend_speed_window(bool restart);
+  void extend_yaw_window(bool restart);
+  void drop_oldest_yaw_row();
+  void recompute_speed_sums();
+  void recompute_yaw_sums();
   InputVerdict speed_vs_accel();
   void update_scale(double delta_v, double integral, double dt_s);
   InputVerdict scale_verdict() const;
@@ -115,8 +148,11 @@ class InputPlausibility {
   std::array<Track, kInputCount> tracks_{};
   std::array<InputVerdict, kInputCount> verdicts_{};
   std::array<std::int64_t, kInputCount> implausible_{};
-  std::vector<Row> rows_;  ///< ring: the last rows, newest at head_
-  std::size_t head_ = 0, count_ = 0;
+  std::vector<Row> rows_;     ///< ring: the last count_ rows, by sequence number
+  std::int64_t newest_ = -1;  ///< the newest row's sequence number (rows since reset - 1)
+  std::size_t count_ = 0;
+  SpeedWindow speed_window_;
+  YawWindow yaw_window_;
   /// delta_v = k * integral(accel_x), fitted on their high-passed values (see the header).
   struct ScaleFit {
     double mean_dv = 0.0, mean_int = 0.0;  ///< slow means removed
