@@ -226,13 +226,21 @@ PipelineSnapshot Pipeline::snapshot() const {
 }
 
 bool Pipeline::restore(const PipelineSnapshot& s) {
-  if (s.type != params_.estimator.type || !s.has_prior || !s.has_reference) return false;
+  // A car whose suspension reads the load re-checks it against the saved reference deflection
+  // at its next standstill; without one that check is impossible, and that standstill's static
+  // prior is the better start. A car without a load sensor never has a reference: its saved
+  // belief is restored, and the load monitor treats the time switched off as a long stop.
+  const bool carries_load = params_.suspension.carries_load();
+  if (s.type != params_.estimator.type || !s.has_prior || (carries_load && !s.has_reference)) {
+    return false;
+  }
   const MassPrior& prior = s.prior;
   if (!std::isfinite(prior.mass_kg) || !std::isfinite(prior.mu_n) ||
       !(prior.mass_std_kg > 0.0 && std::isfinite(prior.mass_std_kg)) ||
       !(prior.mu_std_n > 0.0 && std::isfinite(prior.mu_std_n)) || s.pairs_used < 0 ||
-      !std::isfinite(s.reference_deflection_m) || !std::isfinite(s.reference_deflection_std_m) ||
-      s.reference_deflection_std_m < 0.0) {
+      (s.has_reference &&
+       (!std::isfinite(s.reference_deflection_m) || !std::isfinite(s.reference_deflection_std_m) ||
+        s.reference_deflection_std_m < 0.0))) {
     return false;
   }
   for (const BlockCounters& b : s.blocks) {
@@ -267,9 +275,12 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   supervisor_.restore_counters(Block::kLateral, s.blocks[1]);
   longitudinal_.reset();
   lateral_.reset();
-  static_init_.restore_reference(s.reference_deflection_m, s.reference_deflection_std_m,
-                                 s.reference_grade_accel_mps2);
-  has_reference_ = true;
+  if (s.has_reference) {
+    static_init_.restore_reference(s.reference_deflection_m, s.reference_deflection_std_m,
+                                   s.reference_grade_accel_mps2);
+  }
+  if (!carries_load) load_monitor_.assume_long_stop();
+  has_reference_ = s.has_reference;
   reference_deflection_m_ = s.reference_deflection_m;
   reference_deflection_std_m_ = s.reference_deflection_std_m;
   reference_grade_accel_mps2_ = s.reference_grade_accel_mps2;

@@ -225,10 +225,10 @@ bool restore_state(const std::string& path, std::uint64_t fingerprint, Pipeline&
     spdlog::warn("{}: saved state refused by the estimator; starting fresh", path);
     return false;
   }
-  spdlog::info(
-      "restored {} estimate {:.1f} kg from {} ({} pairs); a standstill will re-check the load",
-      regressor_type_name(pipeline.params().estimator.type), pipeline.estimate().mass_kg, path,
-      state.state.snapshot.pairs_used);
+  spdlog::info("restored {} estimate {:.1f} kg from {} ({} pairs); {} will re-check the load",
+               regressor_type_name(pipeline.params().estimator.type), pipeline.estimate().mass_kg,
+               path, state.state.snapshot.pairs_used,
+               pipeline.params().suspension.carries_load() ? "a standstill" : "the drive");
   return true;
 }
 

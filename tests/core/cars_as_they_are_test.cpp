@@ -164,6 +164,35 @@ TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
   EXPECT_NEAR(pipeline.estimate().mass_kg, after.mass_kg, 0.02 * after.mass_kg);
 }
 
+// Given a car without a load sensor (so no reference deflection), its saved belief is restored
+// after a restart, and the time switched off counts as a long stop: driving on 300 kg heavier,
+// the new load is found.
+TEST(NoLoadSensor, ASavedBeliefIsRestoredAndTheLoadReChecked) {
+  const PipelineParams p = no_load_sensor_params();
+  Pipeline original(p);
+  testing::LongitudinalDrive before;
+  before.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  for (const Sample& s : testing::longitudinal_samples(before, p.vehicle, 0.0, 120.0, 15.0, 0.0)) {
+    original.step(s);
+  }
+  const PipelineSnapshot saved = original.snapshot();
+  ASSERT_FALSE(saved.has_reference);
+  ASSERT_GT(saved.pairs_used, 0);
+
+  Pipeline restored(p);
+  ASSERT_TRUE(restored.restore(saved));
+  EXPECT_EQ(restored.estimate().mass_kg, original.estimate().mass_kg);
+  EXPECT_EQ(restored.estimate().reason, StatusReason::kRestored);
+  testing::LongitudinalDrive after = before;
+  after.mass_kg = before.mass_kg + 300.0;
+  for (const Sample& s : testing::longitudinal_samples(after, p.vehicle, 500.0, 700.0, 15.0, 0.0)) {
+    restored.step(s);
+  }
+  restored.flush();
+  EXPECT_EQ(restored.estimate().prior_reason, StatusReason::kLoadChanged);
+  EXPECT_NEAR(restored.estimate().mass_kg, after.mass_kg, 0.01 * after.mass_kg);
+}
+
 TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
   PipelineParams p;
   p.vehicle = testing::test_vehicle();

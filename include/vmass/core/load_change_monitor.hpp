@@ -60,6 +60,8 @@ class LoadChangeMonitor {
   const BayesEstimator& challenger_bayes() const { return bayes_; }
   const MassPrior& start_prior() const { return start_prior_; }
   bool active() const { return active_; }
+  /// The vehicle was switched off (a restored state): a challenger starts when it drives.
+  void assume_long_stop() { long_stop_ = true; }
   void dismiss() { active_ = false; }
 
  private:
