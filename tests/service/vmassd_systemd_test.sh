@@ -5,7 +5,8 @@
 # simulated drive (vmass-sim paper_exp2) played onto can0 with canplayer:
 #   1. `systemctl start vmassd` returns once it notified READY=1 (Type=notify); the service is
 #      active and estimates arrive on LCM (vmass-monitor, multicast on loopback);
-#   2. the state file appears in the state directory (daemon.persist_interval_s: 5 here);
+#   2. the state file appears in the state directory with the reference deflection of a
+#      standstill (daemon.persist_interval_s: 5 here);
 #   3. SIGSTOP to the daemon: no watchdog ping, so systemd kills it after WatchdogSec and
 #      restarts it (NRestarts 1), and the new process restores the saved state;
 #   4. `systemctl stop vmassd`: exit 0, the final state saved, the unit's result "success".
@@ -42,7 +43,10 @@ if [ "${1:-}" = "--inside" ]; then
   echo "1. estimates on LCM: $(grep -c . "$VMTEST_OUT/monitor.txt") monitor lines"
 
   state=/var/lib/private/vmass/vmassd.state
-  poll 60 test -s "$state" || fail "no state file $state"
+  # A state the restarted daemon can restore: this car reads its load, so the state must carry
+  # the reference deflection of a standstill (one saved before the first standstill window, on
+  # a slow machine, has none and is refused on restore).
+  poll 60 grep -qx "has_reference 1" "$state" || fail "no state file with a reference: $state"
   echo "2. state file saved: $(stat -c %s "$state") bytes"
 
   main=$(systemctl show -p MainPID --value vmassd)
