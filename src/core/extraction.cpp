@@ -55,8 +55,8 @@ int DifferencingParams::steps() const {
   return n < 1 ? 1 : static_cast<int>(n);
 }
 
-std::string DifferencingParams::validate() const {
-  ParamCheck c("estimator");
+std::string DifferencingParams::validate(const std::string& section) const {
+  ParamCheck c(section);
   c.in_half_open_range("tick_rate_hz", tick_rate_hz, 0.0, 10000.0);
   c.positive("differencing_dt_s", differencing_dt_s);
   c.non_negative("filter_cutoff_hz", filter_cutoff_hz);

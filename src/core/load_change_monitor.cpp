@@ -36,8 +36,8 @@ const MassRegressor& LoadChangeMonitor::challenger() const {
                   : static_cast<const MassRegressor&>(bayes_);
 }
 
-void LoadChangeMonitor::step(const Sample& sample) {
-  if (!params_.detect_in_motion || !sample.has(Input::kSpeed)) return;
+bool LoadChangeMonitor::step(const Sample& sample) {
+  if (!params_.detect_in_motion || !sample.has(Input::kSpeed)) return false;
   const bool still = std::abs(sample.speed_mps) <= standstill_speed_mps_;
   if (still) {
     if (!standing_) {
@@ -45,14 +45,15 @@ void LoadChangeMonitor::step(const Sample& sample) {
       standing_since_us_ = sample.time_us;
     }
     if (to_seconds(sample.time_us - standing_since_us_) >= params_.min_stop_s) long_stop_ = true;
-    return;
+    return false;
   }
   standing_ = false;
-  if (long_stop_) {  // driving again after a stop that may have changed the load
-    long_stop_ = false;
-    regressor().reset(start_prior_);
-    active_ = true;
-  }
+  if (!long_stop_) return false;
+  // Driving again after a stop that may have changed the load.
+  long_stop_ = false;
+  regressor().reset(start_prior_);
+  active_ = true;
+  return true;
 }
 
 void LoadChangeMonitor::offer(const RegressionPair& pair) {

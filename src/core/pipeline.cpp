@@ -25,6 +25,9 @@ std::string_view regressor_type_name(RegressorType t) {
 std::string EstimatorParams::validate() const {
   ParamCheck c("estimator");
   c.nested(differencing.validate());
+  if (differencing.validate().empty()) {
+    c.nested(monitor_differencing().validate("estimator.load_change"));
+  }
   c.nested(static_init.validate());
   c.nested(load_change.validate());
   c.nested(longitudinal.validate());
@@ -39,17 +42,22 @@ std::string EstimatorParams::validate() const {
   return c.message();
 }
 
-double EstimatorParams::effective_pair_correlation_ticks() const {
+DifferencingParams EstimatorParams::monitor_differencing() const {
+  DifferencingParams d = differencing;
+  d.differencing_dt_s = load_change.differencing_dt_s;
+  d.filter_cutoff_hz = load_change.filter_cutoff_hz;
+  return d;
+}
+
+double EstimatorParams::effective_pair_correlation_ticks(const DifferencingParams& d) const {
   if (pair_correlation_ticks >= 1.0) return pair_correlation_ticks;
   // Pairs taken every tick share their noise with their neighbours for about the differencing
   // window (they difference overlapping stretches) plus the low-pass's time constant
   // 1 / (2 pi f_c), in ticks.
   constexpr double kTwoPi = 6.283185307179586;
   const double filter_ticks =
-      differencing.filter_cutoff_hz > 0.0
-          ? differencing.tick_rate_hz / (kTwoPi * differencing.filter_cutoff_hz)
-          : 0.0;
-  return std::max(1.0, static_cast<double>(differencing.steps()) + filter_ticks);
+      d.filter_cutoff_hz > 0.0 ? d.tick_rate_hz / (kTwoPi * d.filter_cutoff_hz) : 0.0;
+  return std::max(1.0, static_cast<double>(d.steps()) + filter_ticks);
 }
 
 std::string PipelineParams::validate() const {
@@ -69,20 +77,34 @@ Pipeline::Pipeline(const PipelineParams& params)
                     params.estimator.static_init.standstill_speed_mps),
       longitudinal_(params.vehicle, params.estimator.longitudinal, params.estimator.differencing),
       lateral_(params.vehicle, params.estimator.lateral, params.estimator.differencing),
+      monitor_longitudinal_(params.vehicle, params.estimator.longitudinal,
+                            params.estimator.monitor_differencing()),
+      monitor_lateral_(params.vehicle, params.estimator.lateral,
+                       params.estimator.monitor_differencing()),
       supervisor_(params.estimator.supervisor),
       rls_(params.estimator.rls),
       bayes_(params.estimator.bayes),
       regressor_(params.estimator.type == RegressorType::kRls
                      ? static_cast<MassRegressor*>(&rls_)
                      : static_cast<MassRegressor*>(&bayes_)),
-      pair_information_(1.0 / params.estimator.effective_pair_correlation_ticks()) {}
+      pair_information_(
+          1.0 / params.estimator.effective_pair_correlation_ticks(params.estimator.differencing)),
+      monitor_pair_information_(1.0 / params.estimator.effective_pair_correlation_ticks(
+                                          params.estimator.monitor_differencing())) {}
+
+void Pipeline::reset_extractors(double reference_mass_kg) {
+  longitudinal_.set_reference_mass(reference_mass_kg);
+  longitudinal_.reset();
+  lateral_.reset();
+  monitor_longitudinal_.set_reference_mass(reference_mass_kg);
+  monitor_longitudinal_.reset();
+  monitor_lateral_.reset();
+}
 
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   regressor_->reset(prior);
   supervisor_.on_regressor_reset();
-  longitudinal_.set_reference_mass(prior.mass_kg);
-  longitudinal_.reset();
-  lateral_.reset();
+  reset_extractors(prior.mass_kg);
   has_prior_ = true;
   has_plausible_ = false;
   prior_reason_ = reason;
@@ -92,8 +114,6 @@ void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
 }
 
 void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
-  const bool monitor = !params_.suspension.carries_load();
-  if (monitor) load_monitor_.step(sample);
   // Extractors run on every tick (their filters need continuity); the supervisor decides.
   Extraction longitudinal = longitudinal_.step(sample);
   Extraction lateral = lateral_.step(sample);
@@ -101,17 +121,31 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
   lateral.pair.information = pair_information_;
   result->events[static_cast<int>(Block::kLongitudinal)] =
       supervisor_.offer(Block::kLongitudinal, longitudinal, *regressor_, &result->estimate_changed);
-  if (monitor && longitudinal.has_pair()) load_monitor_.offer(longitudinal.pair);
   // Pairs kept while the driveline lag was unknown, now at the identified lag.
   Extraction released;
   while (longitudinal_.pop_released(&released)) {
     released.pair.information = pair_information_;
     supervisor_.offer_late(Block::kLongitudinal, released, *regressor_, &result->estimate_changed);
-    if (monitor && released.has_pair()) load_monitor_.offer(released.pair);
   }
   result->events[static_cast<int>(Block::kLateral)] =
       supervisor_.offer(Block::kLateral, lateral, *regressor_, &result->estimate_changed);
-  if (monitor && lateral.has_pair()) load_monitor_.offer(lateral.pair);
+}
+
+void Pipeline::offer_monitor_pairs(const Sample& sample) {
+  // The challenger is judged against the belief as it was before the stop: the pairs since
+  // then, of a load that may have changed, must not pull the reference towards the challenger.
+  if (load_monitor_.step(sample)) belief_before_stop_ = regressor_->state();
+  Extraction longitudinal = monitor_longitudinal_.step(sample);
+  Extraction lateral = monitor_lateral_.step(sample);
+  Extraction released;
+  for (Extraction* e : {&longitudinal, &lateral}) {
+    e->pair.information = monitor_pair_information_;
+    if (e->has_pair()) load_monitor_.offer(e->pair);
+  }
+  while (monitor_longitudinal_.pop_released(&released)) {
+    released.pair.information = monitor_pair_information_;
+    if (released.has_pair()) load_monitor_.offer(released.pair);
+  }
 }
 
 void Pipeline::adopt_challenger() {
@@ -124,6 +158,7 @@ void Pipeline::adopt_challenger() {
   has_plausible_ = false;
   supervisor_.on_regressor_reset();
   longitudinal_.set_reference_mass(regressor_->state().mass_kg);
+  monitor_longitudinal_.set_reference_mass(regressor_->state().mass_kg);
   prior_ = load_monitor_.start_prior();
   prior_reason_ = StatusReason::kLoadChanged;
   estimate_.initial_mass_kg = prior_.mass_kg;
@@ -176,8 +211,12 @@ StepResult Pipeline::step(const Sample& sample) {
     result.estimate_changed = true;
   }
 
-  if (has_prior_) offer_pairs(sample, &result);
-  if (load_monitor_.contradicts(regressor_->state())) {
+  if (has_prior_) {
+    offer_pairs(sample, &result);
+    // A sensor reading the load sees every change at a standstill; without one the drive must.
+    if (!params_.suspension.carries_load()) offer_monitor_pairs(sample);
+  }
+  if (load_monitor_.contradicts(belief_before_stop_)) {
     adopt_challenger();
     result.reinitialised = true;
     result.estimate_changed = true;
@@ -273,8 +312,7 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   supervisor_.on_regressor_reset();
   supervisor_.restore_counters(Block::kLongitudinal, s.blocks[0]);
   supervisor_.restore_counters(Block::kLateral, s.blocks[1]);
-  longitudinal_.reset();
-  lateral_.reset();
+  reset_extractors(prior.mass_kg);
   if (s.has_reference) {
     static_init_.restore_reference(s.reference_deflection_m, s.reference_deflection_std_m,
                                    s.reference_grade_accel_mps2);
@@ -340,7 +378,7 @@ void Pipeline::refresh_belief() {
                               prior_reason_ != StatusReason::kNoLoadSensor;
     estimate_.status = static_prior ? EstimateStatus::kStaticOnly : EstimateStatus::kInitialising;
     estimate_.reason = prior_reason_;
-  } else if (estimate_.plausible && load_monitor_.suspects(state)) {
+  } else if (estimate_.plausible && load_monitor_.suspects(belief_before_stop_)) {
     span_challenger();
     estimate_.status = EstimateStatus::kConverging;
     estimate_.reason = StatusReason::kLoadChangeSuspected;

@@ -83,6 +83,26 @@ TEST(Config, DifferencingStepMustBeWholeTicks) {
   EXPECT_NE(c.error.find("estimator.differencing_dt_s"), std::string::npos) << c.error;
 }
 
+TEST(Config, TheLoadMonitorHasItsOwnDifferencing) {
+  const ConfigLoad ok = load_config_text(std::string(kMinimal) +
+                                             "estimator:\n  load_change:\n"
+                                             "    differencing_dt_s: 0.3\n"
+                                             "    filter_cutoff_hz: 2.0\n",
+                                         "monitor.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  const EstimatorParams& e = ok.config->pipeline.estimator;
+  EXPECT_EQ(e.monitor_differencing().differencing_dt_s, 0.3);
+  EXPECT_EQ(e.monitor_differencing().filter_cutoff_hz, 2.0);
+  EXPECT_EQ(e.monitor_differencing().tick_rate_hz, e.differencing.tick_rate_hz);
+  EXPECT_NE(e.differencing.differencing_dt_s, 0.3);  // the belief's own is untouched
+  const ConfigLoad bad = load_config_text(
+      std::string(kMinimal) + "estimator:\n  load_change:\n    differencing_dt_s: 0.015\n",
+      "monitor_dt.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("estimator.load_change.differencing_dt_s"), std::string::npos)
+      << bad.error;
+}
+
 TEST(Config, RawSectionsAreKeptForTheirLayers) {
   const ConfigLoad c = load_config_text(
       std::string(kMinimal) + "lcm:\n  url: memq://\ncan:\n  dbc: car.dbc\n", "raw.yaml");

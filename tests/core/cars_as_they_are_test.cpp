@@ -164,6 +164,37 @@ TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
   EXPECT_NEAR(pipeline.estimate().mass_kg, after.mass_kg, 0.02 * after.mass_kg);
 }
 
+// Given a short drive before a stop (a weak belief) and 300 kg more after it, the belief drifts
+// towards the new load as it takes the new pairs, so that the challenger would never differ
+// from it enough: the challenger is judged against the belief as it was before the stop.
+// (Judged against the running belief, this drive ends undecided.)
+TEST(NoLoadSensor, TheChallengerIsJudgedAgainstTheBeliefBeforeTheStop) {
+  const PipelineParams p = no_load_sensor_params();
+  Pipeline pipeline(p);
+  testing::LongitudinalDrive before;
+  before.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  before.accel_noise_std_mps2 = 0.02;
+  before.force_noise_std_n = 60.0;
+  testing::LongitudinalDrive after = before;
+  after.mass_kg = before.mass_kg + 300.0;
+  after.seed = 3;
+  for (const Sample& s : testing::longitudinal_samples(before, p.vehicle, 0.0, 12.0, 15.0, 0.0)) {
+    pipeline.step(s);
+  }
+  ASSERT_NEAR(pipeline.estimate().mass_kg, before.mass_kg, 0.03 * before.mass_kg);
+  Sample stop = testing::longitudinal_samples(before, p.vehicle, 12.0, 12.01, 0.0, 0.0).front();
+  for (double t = 12.0; t < 22.0; t += 0.01) {
+    stop.time_us = from_seconds(t);
+    pipeline.step(stop);
+  }
+  for (const Sample& s : testing::longitudinal_samples(after, p.vehicle, 22.0, 400.0, 15.0, 0.0)) {
+    pipeline.step(s);
+  }
+  pipeline.flush();
+  EXPECT_EQ(pipeline.estimate().prior_reason, StatusReason::kLoadChanged);
+  EXPECT_NEAR(pipeline.estimate().mass_kg, after.mass_kg, 0.02 * after.mass_kg);
+}
+
 // Given a car without a load sensor (so no reference deflection), its saved belief is restored
 // after a restart, and the time switched off counts as a long stop: driving on 300 kg heavier,
 // the new load is found.

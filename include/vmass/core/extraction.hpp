@@ -45,12 +45,13 @@ struct Extraction {
 /// simulation, 0.2 s on CAN data) and the optional low-pass applied before differencing.
 struct DifferencingParams {
   double tick_rate_hz = 100.0;
-  double differencing_dt_s = 0.4;
-  double filter_cutoff_hz = 1.0;
+  double differencing_dt_s = 0.6;
+  double filter_cutoff_hz = 0.7;
 
   /// dt in ticks (>= 1).
   int steps() const;
-  std::string validate() const;
+  /// Errors name their keys under `section` (the config section these values come from).
+  std::string validate(const std::string& section = "estimator") const;
 };
 
 }  // namespace vmass

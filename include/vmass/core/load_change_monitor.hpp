@@ -3,8 +3,11 @@
 //
 // Load changes only at a standstill. After every standstill of at least min_stop_s, a
 // challenger regressor (the same kind as the estimator's) starts from the no-static prior and
-// learns from the pairs that follow, unweighted by the main belief. The main belief keeps
-// everything the earlier drive taught. When the two disagree beyond chance,
+// learns from the pairs that follow, unweighted by the main belief; its pairs come from their
+// own extractors with a quicker differencing (many short pairs decide sooner). The main belief
+// keeps everything the earlier drive taught. "Main" below is the main belief as it was when the
+// challenger started: the pairs since the stop would pull the running belief towards the
+// challenger and hide the change. When the two disagree beyond chance,
 //   |M_challenger - M_main| > decide_sigma sqrt(s_challenger^2 + s_main^2)
 //   and > min_change_fraction M_empty, after min_pairs pairs of the challenger,
 // the load changed at that stop: the challenger's belief becomes the estimate. Before that, once
@@ -33,6 +36,11 @@ struct LoadChangeParams {
   double decide_sigma = 4.0;
   double min_change_fraction = 0.03;  ///< of the empty mass
   long min_pairs = 300;               ///< challenger pairs before it may decide
+  /// The challenger's own differencing (the tick rate is the estimator's). Quicker than the
+  /// belief's: a load change is decided on many short, independent pairs, while the belief
+  /// wants the slow filter's smaller bias.
+  double differencing_dt_s = 0.4;
+  double filter_cutoff_hz = 1.0;
 
   std::string validate() const;
 };
@@ -45,8 +53,9 @@ class LoadChangeMonitor {
                     bool use_rls, const MassPrior& start_prior, double empty_mass_kg,
                     double standstill_speed_mps);
 
-  /// Tracks standstills; a long one (re)starts the challenger when driving resumes.
-  void step(const Sample& sample);
+  /// Tracks standstills; a long one (re)starts the challenger when driving resumes. Returns
+  /// true on the tick it (re)starts.
+  bool step(const Sample& sample);
   /// A pair the extractors accepted (before the main belief weighed it).
   void offer(const RegressionPair& pair);
   /// True when the challenger now contradicts `main` (see the header); the caller then takes

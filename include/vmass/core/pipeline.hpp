@@ -1,7 +1,8 @@
 // Pipeline: the whole estimator of the paper (Fig. 3) on a stream of Samples.
 //
 //   Sample -> StaticInitializer (eq. 3, load changes)    -> prior of the regressor
-//          (no sensor reading the load: the no-static prior, and LoadChangeMonitor)
+//          (no sensor reading the load: the no-static prior, and LoadChangeMonitor with its
+//           own extractors)
 //          -> LongitudinalExtractor (eqs. 4-7, Table II)  -> Supervisor (eq. 13, innovation
 //          -> LateralExtractor (eqs. 8-12, Table III)     -> gate) -> RlsEstimator | BayesEstimator
 //          -> Estimate
@@ -60,8 +61,10 @@ struct EstimatorParams {
   /// paper_exp1 (seeds 2, 3); with the automatic 3.2, on 100 %.
   double pair_correlation_ticks = 0.0;
 
-  /// The correlation ticks in effect (>= 1).
-  double effective_pair_correlation_ticks() const;
+  /// The correlation ticks in effect for pairs differenced with `d` (>= 1).
+  double effective_pair_correlation_ticks(const DifferencingParams& d) const;
+  /// The load-change challenger's differencing (LoadChangeParams) at the estimator's tick rate.
+  DifferencingParams monitor_differencing() const;
   std::string validate() const;
 };
 
@@ -134,8 +137,12 @@ class Pipeline {
   void restart(const MassPrior& prior, StatusReason reason);
   /// The load-change monitor's challenger becomes the belief (a load change seen in motion).
   void adopt_challenger();
-  /// Offer the tick's extractions to the supervisor (and the load-change monitor).
+  /// Offer the tick's extractions to the supervisor.
   void offer_pairs(const Sample& sample, StepResult* result);
+  /// The load-change monitor's own extractions (its quicker differencing) to its challenger.
+  void offer_monitor_pairs(const Sample& sample);
+  /// Forget the extractors' signal histories; `reference_mass_kg` (> 0) becomes their gates'.
+  void reset_extractors(double reference_mass_kg);
   void refresh_estimate(const Sample& sample);
   /// The estimate's belief and status from the regressor (inputs as of the last step).
   void refresh_belief();
@@ -152,11 +159,15 @@ class Pipeline {
   LoadChangeMonitor load_monitor_;
   LongitudinalExtractor longitudinal_;
   LateralExtractor lateral_;
+  LongitudinalExtractor monitor_longitudinal_;  ///< the load monitor's (its own differencing)
+  LateralExtractor monitor_lateral_;
   Supervisor supervisor_;
   RlsEstimator rls_;
   BayesEstimator bayes_;
   MassRegressor* regressor_;
-  double pair_information_;  ///< RegressionPair::information of every extracted pair
+  RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
+  double pair_information_;            ///< RegressionPair::information of every extracted pair
+  double monitor_pair_information_;    ///< the same for the load monitor's pairs
   bool has_prior_ = false;
   bool has_plausible_ = false;  ///< an estimate of the current load was plausible
   StatusReason prior_reason_ = StatusReason::kWaitingForStandstill;
