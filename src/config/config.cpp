@@ -29,6 +29,7 @@ void read_vehicle(YamlReader r, VehicleParams* v) {
   r.read("pitch_gradient_deg_per_g", &v->pitch_gradient_deg_per_g);
   r.read("pitch_gradient_std_deg_per_g", &v->pitch_gradient_std_deg_per_g);
   r.read("rotating_mass_accuracy_fraction", &v->rotating_mass_accuracy_fraction);
+  r.read("electric_drive", &v->electric_drive);
   r.read("gear_ratios", &v->gear_ratios);
   r.read("final_drive_ratio", &v->final_drive_ratio);
   r.read("driveline_efficiency", &v->driveline_efficiency);
@@ -70,6 +71,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
   r.read("filter_cutoff_hz", &e->differencing.filter_cutoff_hz);
   r.read("converged_ci_halfwidth_fraction", &e->converged_ci_halfwidth_fraction);
   r.read("pair_correlation_ticks", &e->pair_correlation_ticks);
+  r.read("model_error_std_fraction", &e->model_error_std_fraction);
   {
     YamlReader s = r.child("static_init");
     StaticInitParams& p = e->static_init;
@@ -103,6 +105,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     s.read("min_excitation_sigma", &p.min_excitation_sigma);
     s.read("settle_s", &p.settle_s);
     s.read("use_braking", &p.use_braking);
+    s.read("use_overrun", &p.use_overrun);
     s.read("brake_applied_weight_fraction", &p.brake_applied_weight_fraction);
     s.read("noise_memory_s", &p.noise_memory_s);
     s.read("subtract_aero", &p.subtract_aero);

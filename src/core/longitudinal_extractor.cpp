@@ -147,6 +147,7 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   if (!s.has_all(required_)) return false;
   const double r = vehicle_.wheel_radius_m;
   double force = wheel_torque_nm(s) / r;
+  const double force_n_reported = force;
   const bool brakes = braking(s);
   // The brake force is subtracted wherever the pressure is known: below the "applied" level it
   // is small, and its gain's error with it, but it is not zero (a brake released inside a window
@@ -161,8 +162,9 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
       (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) && !driveline_slips(s);
   previous_gear_ = s.has(Input::kGear) ? s.gear : 0;
   in->force_n = force;
-  in->clean =
-      (!brakes || params_.use_braking) && gear_ok && std::abs(s.speed_mps) >= params_.min_speed_mps;
+  const bool overrun = force_n_reported < 0.0 && !vehicle_.electric_drive;
+  in->clean = (!brakes || params_.use_braking) && (!overrun || params_.use_overrun) && gear_ok &&
+              std::abs(s.speed_mps) >= params_.min_speed_mps;
   return true;
 }
 

@@ -36,6 +36,9 @@ std::string EstimatorParams::validate() const {
   c.nested(rls.validate());
   c.nested(bayes.validate());
   c.in_open_range("converged_ci_halfwidth_fraction", converged_ci_halfwidth_fraction, 0.0, 1.0);
+  if (!(model_error_std_fraction >= 0.0 && model_error_std_fraction < 1.0)) {
+    c.fail("model_error_std_fraction", "must be in [0, 1)");
+  }
   if (!(pair_correlation_ticks == 0.0 || pair_correlation_ticks >= 1.0)) {
     c.fail("pair_correlation_ticks", "must be 0 (automatic) or >= 1");
   }
@@ -400,7 +403,8 @@ double Pipeline::model_std_kg(double mass_kg) const {
   const double relative =
       std::sqrt(std::pow(kUniformStdPerBound * v.wheel_torque_accuracy_fraction, 2) +
                 std::pow(kUniformStdPerBound * v.wheel_radius_accuracy_fraction, 2) +
-                std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2));
+                std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2) +
+                std::pow(params_.estimator.model_error_std_fraction, 2));
   return relative * std::abs(mass_kg);
 }
 

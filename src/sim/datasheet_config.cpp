@@ -45,12 +45,16 @@ void write_vehicle(std::ostringstream& os, const DrawnVehicle& d, bool errors, K
     os << (g > 1 ? ", " : "") << num(rotating_mass_kg(v.powertrain, g, v.wheel_radius_m) * rot);
   }
   os << "]\n";
+  if (v.powertrain.transmission == Transmission::kElectric) os << "  electric_drive: true\n";
   os << "  drag_area_m2: " << num(v.drag_area_m2 * (1.0 + err(e.drag_area))) << "\n";
   os << "  rolling_resistance_coeff: "
      << num(v.rolling_resistance_coeff * (1.0 + err(e.rolling_coeff))) << "\n";
   if (k == Knowledge::kDatasheetScale) {
     os << "  wheel_torque_accuracy_fraction: " << num(e.declared_torque_accuracy) << "\n";
     os << "  wheel_radius_accuracy_fraction: " << num(e.declared_radius_accuracy) << "\n";
+  } else {
+    os << "  wheel_torque_accuracy_fraction: 0\n";
+    os << "  wheel_radius_accuracy_fraction: 0\n";
   }
   if (d.sensors.torque == TorqueSignal::kEngineTorque) {
     const PowertrainParams& p = v.powertrain;

@@ -243,7 +243,8 @@ TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
   const Estimate& e = pipeline.estimate();
   const double relative =
       std::sqrt(std::pow(0.05 / std::sqrt(3.0), 2) + std::pow(0.02 / std::sqrt(3.0), 2) +
-                std::pow(0.5 * 3.14159265358979 / 180.0, 2));
+                std::pow(0.5 * 3.14159265358979 / 180.0, 2) +
+                std::pow(p.estimator.model_error_std_fraction, 2));
   EXPECT_NEAR(e.mass_model_std_kg, relative * e.mass_kg, 1e-6);
   EXPECT_GE(e.mass_std_kg, e.mass_model_std_kg);
   // The 95 % half-width is at least 1.96 model stds, so it never shrinks below ~6 % here ...

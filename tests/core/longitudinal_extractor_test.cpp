@@ -2,6 +2,8 @@
 // differenced pairs (eq. 5) regress to that mass: the resistive forces cancel.
 #include "vmass/core/longitudinal_extractor.hpp"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
@@ -71,6 +73,46 @@ TEST(LongitudinalExtractor, LongerDifferencingStepStillCancelsResistance) {
   d.differencing_dt_s = 0.2;  // the paper's CAN setting
   const Eigen::Vector2d theta = batch_fit(extract(samples, v, LongitudinalParams{}, d));
   EXPECT_NEAR(theta(0), drive.mass_kg, 0.005 * drive.mass_kg);
+}
+
+// The synthetic drive's decelerations as negative wheel torque instead of brake pressure, the
+// torque reported `report_scale` times the true one.
+std::vector<Sample> decelerating_without_brakes(std::vector<Sample> samples, const VehicleParams& v,
+                                                double report_scale) {
+  for (Sample& s : samples) {
+    if (!(s.brake_pressure_pa > 0.0)) continue;
+    const double force_n = -s.brake_pressure_pa * v.brake_gain_n_per_pa;
+    s.set(Input::kWheelTorque, report_scale * force_n * v.wheel_radius_m);
+    s.set(Input::kBrakePressure, 0.0);
+  }
+  return samples;
+}
+
+// Given an ECU whose drag torque in overrun reads 30 % high (its friction model), the pairs
+// that saw a negative torque would bias the mass; none is taken. An electric drive's negative
+// torque (regeneration) is as good as its drive torque: its pairs are taken.
+TEST(LongitudinalExtractor, AnEngineDraggedInOverrunGivesNoPair) {
+  const VehicleParams combustion = testing::test_vehicle();
+  LongitudinalDrive drive;
+  const std::vector<Sample> braking =
+      testing::longitudinal_samples(drive, combustion, 0.0, 120.0, 15.0, 0.01);
+  const auto overrun = decelerating_without_brakes(braking, combustion, 1.3);
+  const auto pairs = extract(overrun, combustion, LongitudinalParams{}, DifferencingParams{});
+  ASSERT_GT(pairs.size(), 1000u);
+  EXPECT_NEAR(batch_fit(pairs)(0), drive.mass_kg, 0.005 * drive.mass_kg);
+  LongitudinalParams with_overrun;
+  with_overrun.use_overrun = true;
+  const auto biased = extract(overrun, combustion, with_overrun, DifferencingParams{});
+  EXPECT_GT(biased.size(), pairs.size());
+  EXPECT_GT(std::abs(batch_fit(biased)(0) - drive.mass_kg), 0.02 * drive.mass_kg);
+
+  VehicleParams electric = combustion;
+  electric.electric_drive = true;
+  const auto regenerating = decelerating_without_brakes(braking, electric, 1.0);
+  const auto electric_pairs =
+      extract(regenerating, electric, LongitudinalParams{}, DifferencingParams{});
+  EXPECT_GT(electric_pairs.size(), pairs.size());
+  EXPECT_NEAR(batch_fit(electric_pairs)(0), drive.mass_kg, 0.005 * drive.mass_kg);
 }
 
 TEST(LongitudinalExtractor, GatesOfTableII) {

@@ -165,7 +165,9 @@ TEST(SimPopulation, DatasheetConfigNeverLeaksTheLoadedState) {
   const std::string sheet =
       datasheet_config_yaml(d, Realism::all(), Knowledge::kDatasheetScale, "x.dbc");
   EXPECT_EQ(exact.find("estimator:"), std::string::npos);
-  EXPECT_EQ(known.find("wheel_torque_accuracy_fraction"), std::string::npos);
+  // Known scale: the torque and the radius are right, and the config says so.
+  EXPECT_NE(known.find("wheel_torque_accuracy_fraction: 0\n"), std::string::npos);
+  EXPECT_NE(known.find("wheel_radius_accuracy_fraction: 0\n"), std::string::npos);
   EXPECT_NE(sheet.find("wheel_torque_accuracy_fraction: 0.05"), std::string::npos);
   EXPECT_NE(sheet.find("wheel_radius_accuracy_fraction: 0.02"), std::string::npos);
   EXPECT_DOUBLE_EQ(torque_report_scale(d, Knowledge::kKnownScale), 1.0);

@@ -22,8 +22,10 @@
 //     min_excitation_sigma times the robust scale of the residual dF - M_ref da (measured on
 //     every clean tick, M_ref the prior's mass: it does not follow the estimate), with floors;
 //   - a pair is taken only when the whole window (and settle_s before it) was clean: no brake
-//     (the brake gain is the least known; use_braking allows braking pairs), no gear change and
-//     a valid gear, speed above min_speed_mps, |a_y| small;
+//     (the brake gain is the least known; use_braking allows braking pairs), no engine dragged
+//     in overrun (an ECU's drag torque is its least accurate; use_overrun allows it; an
+//     electric drive's regeneration is clean), no gear change and a valid gear, speed above
+//     min_speed_mps, |a_y| small;
 //   - an outlier gate that cannot lock in: the mass the pair implies, y / da, must lie in the
 //     plausible band [0.5 empty, 1.5 maximum permissible] (2.5 empty without a maximum).
 // Without a brake-pressure signal the brake-light switch decides; with neither, the block needs
@@ -66,6 +68,10 @@ struct LongitudinalParams {
   double min_speed_mps = 2.0;
   double settle_s = 0.5;  ///< clean time before a window, after a brake or shift
   bool use_braking = false;
+  /// Take pairs while a combustion engine is dragged (negative reported torque, overrun). An ECU
+  /// reports its drag torque from a friction model, its least accurate figure (20-40 % off is
+  /// common), so off by default. Regeneration (vehicle.electric_drive) is not overrun.
+  bool use_overrun = false;
   double brake_applied_weight_fraction = 0.02;  ///< brakes count as applied above this K P / (M g)
   double noise_memory_s = 30.0;
   bool subtract_aero = true;

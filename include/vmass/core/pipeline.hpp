@@ -60,6 +60,11 @@ struct EstimatorParams {
   /// simulator: with 1 the Bayes interval covered the truth on 37-46 % of the ticks of
   /// paper_exp1 (seeds 2, 3); with the automatic 3.2, on 100 %.
   double pair_correlation_ticks = 0.0;
+  /// Relative std of the mass that the model's unmodelled effects leave and no driving averages
+  /// away (the driveline mode's residue after the low-pass, datasheet errors of the aero,
+  /// rolling and rotating terms, wheel-speed errors): a floor of the published interval,
+  /// in quadrature with the declared accuracies (Estimate::mass_model_std_kg).
+  double model_error_std_fraction = 0.01;
 
   /// The correlation ticks in effect for pairs differenced with `d` (>= 1).
   double effective_pair_correlation_ticks(const DifferencingParams& d) const;

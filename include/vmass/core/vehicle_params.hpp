@@ -48,6 +48,10 @@ struct VehicleParams {
   /// datasheet are rarely better than this): pairs whose rotating-mass term is large (low
   /// gears, an unlocked converter) count less.
   double rotating_mass_accuracy_fraction = 0.3;
+  /// The wheels are driven by electric motors: their negative (regenerative) torque is known as
+  /// well as their drive torque. A combustion engine dragged in overrun is not (see
+  /// LongitudinalParams::use_overrun).
+  bool electric_drive = false;
   /// The driveline, for a car that reports engine torque only (not wheel torque):
   ///   C_wheel = T_engine i_gear i_final eta    (T_engine / eta when the engine is dragged)
   /// Empty gear_ratios or final_drive_ratio 0: unknown (wheel torque is then required).
