@@ -96,7 +96,7 @@ class LongitudinalExtractor {
   void set_reference_mass(double mass_kg) { reference_mass_kg_ = mass_kg; }
 
   const LagEstimator& lag() const { return lag_; }
-  /// kCalibrated: the accelerometer's scale against the wheel speed, 1 + kappa (1 otherwise).
+  /// kCalibrated: the accelerometer's scale against the wheel speed, 1 + g k_pitch (1 otherwise).
   double accel_scale() const;
   /// Robust scale of the residual dF - M_ref da at the horizon, N.
   double force_noise_n() const { return residual_scale_n_ * kScalePerMeanAbs; }
@@ -171,8 +171,8 @@ class LongitudinalExtractor {
   double noise_forget_;
   double scale_forget_;
   double pitch_scale_;       ///< 1 + g k_pitch: the accelerometer's over-read of da from body pitch
-  double scale_s_vv_ = 0.0;  ///< kCalibrated: sum of dv'^2
-  double scale_s_dv_ = 0.0;  ///< ... and of (da_x - dv') dv'
+  double scale_s_wi_ = 0.0;  ///< kCalibrated: sum of dv' da_x
+  double scale_s_ii_ = 0.0;  ///< ... and of da_x^2
   long scale_pairs_ = 0;
   double previous_speed_ = 0.0;
   bool has_previous_speed_ = false;
