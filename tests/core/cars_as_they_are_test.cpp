@@ -126,42 +126,64 @@ TEST(NoLoadSensor, StartsFromEmptyPlusHalfTheCapacityAndLearns) {
   EXPECT_NEAR(pipeline.estimate().mass_kg, drive.mass_kg, 0.01 * drive.mass_kg);
 }
 
+// A drive of `before_s` at `before`'s mass, a 10 s stop, then `after` (300 kg heavier) until
+// 400 s: the drive a car without a load sensor makes around a loading stop.
+struct LoadingStop {
+  testing::LongitudinalDrive before;
+  testing::LongitudinalDrive after;
+  double before_s;
+
+  LoadingStop(const PipelineParams& p, double before_seconds, unsigned after_seed)
+      : before_s(before_seconds) {
+    before.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+    before.accel_noise_std_mps2 = 0.02;
+    before.force_noise_std_n = 60.0;
+    after = before;
+    after.mass_kg = before.mass_kg + 300.0;
+    after.seed = after_seed;
+  }
+  /// Drives `before` and stands; returns the estimate when the car stopped.
+  Estimate drive_and_stop(Pipeline* pipeline, const VehicleParams& v) const {
+    for (const Sample& s : testing::longitudinal_samples(before, v, 0.0, before_s, 15.0, 0.0)) {
+      pipeline->step(s);
+    }
+    const Estimate at_stop = pipeline->estimate();
+    Sample stop = testing::longitudinal_samples(before, v, before_s, before_s + 0.01, 0.0, 0.0)[0];
+    for (double t = before_s; t < before_s + 10.0; t += 0.01) {
+      stop.time_us = from_seconds(t);
+      pipeline->step(stop);
+    }
+    return at_stop;
+  }
+  std::vector<Sample> drive_on(const VehicleParams& v) const {
+    return testing::longitudinal_samples(after, v, before_s + 10.0, 400.0, 15.0, 0.0);
+  }
+};
+
 // Given a car without a load sensor that stops for 10 s and drives on 300 kg heavier, the
 // interval spans the new mass as soon as the drive since the stop doubts the old belief
 // (load_change_suspected, never converged), before the new belief is adopted.
 TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
   const PipelineParams p = no_load_sensor_params();
   Pipeline pipeline(p);
-  testing::LongitudinalDrive before;
-  before.rotating_mass_kg = p.vehicle.rotating_mass_kg;
-  before.accel_noise_std_mps2 = 0.02;
-  before.force_noise_std_n = 60.0;
-  testing::LongitudinalDrive after = before;
-  after.mass_kg = before.mass_kg + 300.0;
-  after.seed = 2;
-  for (const Sample& s : testing::longitudinal_samples(before, p.vehicle, 0.0, 150.0, 15.0, 0.0)) {
-    pipeline.step(s);
-  }
-  ASSERT_NEAR(pipeline.estimate().mass_kg, before.mass_kg, 0.02 * before.mass_kg);
-  Sample stop = testing::longitudinal_samples(before, p.vehicle, 150.0, 150.01, 0.0, 0.0).front();
-  for (double t = 150.0; t < 160.0; t += 0.01) {
-    stop.time_us = from_seconds(t);
-    pipeline.step(stop);
-  }
+  const LoadingStop drive(p, 150.0, 2);
+  const Estimate at_stop = drive.drive_and_stop(&pipeline, p.vehicle);
+  ASSERT_NEAR(at_stop.mass_kg, drive.before.mass_kg, 0.02 * drive.before.mass_kg);
+  const double new_mass_kg = drive.after.mass_kg;
   long suspected = 0, suspected_and_covered = 0;
-  for (const Sample& s : testing::longitudinal_samples(after, p.vehicle, 160.0, 400.0, 15.0, 0.0)) {
+  for (const Sample& s : drive.drive_on(p.vehicle)) {
     pipeline.step(s);
     const Estimate& e = pipeline.estimate();
     if (e.reason != StatusReason::kLoadChangeSuspected) continue;
     ++suspected;
-    suspected_and_covered += e.ci_low_kg <= after.mass_kg && after.mass_kg <= e.ci_high_kg;
+    suspected_and_covered += e.ci_low_kg <= new_mass_kg && new_mass_kg <= e.ci_high_kg;
     EXPECT_EQ(e.status, EstimateStatus::kConverging);
   }
   EXPECT_GT(suspected, 100);  // a second of ticks at least
   EXPECT_EQ(suspected_and_covered, suspected);
   pipeline.flush();
   EXPECT_EQ(pipeline.estimate().prior_reason, StatusReason::kLoadChanged);  // then decided
-  EXPECT_NEAR(pipeline.estimate().mass_kg, after.mass_kg, 0.02 * after.mass_kg);
+  EXPECT_NEAR(pipeline.estimate().mass_kg, new_mass_kg, 0.02 * new_mass_kg);
 }
 
 // Given a short drive before a stop (a weak belief) and 300 kg more after it, the belief drifts
@@ -171,28 +193,13 @@ TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
 TEST(NoLoadSensor, TheChallengerIsJudgedAgainstTheBeliefBeforeTheStop) {
   const PipelineParams p = no_load_sensor_params();
   Pipeline pipeline(p);
-  testing::LongitudinalDrive before;
-  before.rotating_mass_kg = p.vehicle.rotating_mass_kg;
-  before.accel_noise_std_mps2 = 0.02;
-  before.force_noise_std_n = 60.0;
-  testing::LongitudinalDrive after = before;
-  after.mass_kg = before.mass_kg + 300.0;
-  after.seed = 3;
-  for (const Sample& s : testing::longitudinal_samples(before, p.vehicle, 0.0, 12.0, 15.0, 0.0)) {
-    pipeline.step(s);
-  }
-  ASSERT_NEAR(pipeline.estimate().mass_kg, before.mass_kg, 0.03 * before.mass_kg);
-  Sample stop = testing::longitudinal_samples(before, p.vehicle, 12.0, 12.01, 0.0, 0.0).front();
-  for (double t = 12.0; t < 22.0; t += 0.01) {
-    stop.time_us = from_seconds(t);
-    pipeline.step(stop);
-  }
-  for (const Sample& s : testing::longitudinal_samples(after, p.vehicle, 22.0, 400.0, 15.0, 0.0)) {
-    pipeline.step(s);
-  }
+  const LoadingStop drive(p, 12.0, 3);
+  const Estimate at_stop = drive.drive_and_stop(&pipeline, p.vehicle);
+  ASSERT_NEAR(at_stop.mass_kg, drive.before.mass_kg, 0.03 * drive.before.mass_kg);
+  for (const Sample& s : drive.drive_on(p.vehicle)) pipeline.step(s);
   pipeline.flush();
   EXPECT_EQ(pipeline.estimate().prior_reason, StatusReason::kLoadChanged);
-  EXPECT_NEAR(pipeline.estimate().mass_kg, after.mass_kg, 0.02 * after.mass_kg);
+  EXPECT_NEAR(pipeline.estimate().mass_kg, drive.after.mass_kg, 0.02 * drive.after.mass_kg);
 }
 
 // Given a car without a load sensor (so no reference deflection), its saved belief is restored
