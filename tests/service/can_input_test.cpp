@@ -316,8 +316,9 @@ void expect_vmassd_reads_records_from_fd3(const std::string& daemon_yaml, const 
   EXPECT_EQ(last.frames_unknown, 10);
   EXPECT_GT(estimates, 50);  // 100 Hz for about 1.3 s
   // Records are late only when the receive thread is held off for 4.5 ms (a loaded machine, a
-  // sanitizer build); a drain that came after the ticks would make about a quarter late.
-  EXPECT_LE(records_late(err_text), 5) << err_text;
+  // sanitizer build): 0-1 on a loaded machine, 6 once under TSan; a drain that came after the
+  // ticks made 16 of these 110 late.
+  EXPECT_LE(records_late(err_text), 10) << err_text;
   EXPECT_NE(err_text.find("input socketcan:fd3"), std::string::npos) << err_text;
 
   const int bad = std::system((std::string(VMASSD_BIN) + " --config " + config +
