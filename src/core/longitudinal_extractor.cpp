@@ -188,9 +188,13 @@ void LongitudinalExtractor::update_noise(double residual_n) {
   residual_scale_n_ = noise_forget_ * residual_scale_n_ + (1.0 - noise_forget_) * clipped;
 }
 
+double LongitudinalExtractor::rotating_n(const Record& now, const Record& then) const {
+  return vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0) *
+         (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+}
+
 void LongitudinalExtractor::fill_y_by_lag(const Record& now, const Record& then) {
-  const double rotating_kg = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
-  const double rotating_n = rotating_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  const double rotating_n = this->rotating_n(now, then);
   const std::size_t window = static_cast<std::size_t>(window_ticks_);
   const std::size_t available = filtered_force_.size();
   for (std::size_t lag = 0; lag < y_by_lag_.size(); ++lag) {
@@ -254,32 +258,39 @@ Extraction LongitudinalExtractor::gate(const Record& now, const Record& then, Ex
   }
   if (params_.accel_source == AccelSource::kCalibrated) update_scale(now, then);
   lag_.add(delta_accel, y_by_lag_.data());
+  const PairTerms terms = pair_terms(now, then, delta_accel);
   if (!lag_.identified()) {
-    keep_pending(now.time_us, delta_accel, noise_n, pair_noise_n(now, then));
+    keep_pending(terms);
     out.verdict = PairVerdict::kAwaitingLag;
     return out;
   }
-  return finish(now.time_us, delta_accel, y_by_lag_.data(), noise_n, pair_noise_n(now, then), out);
+  return finish(terms, y_by_lag_.data(), out);
 }
 
 // The pair's own noise: the measured residual scale and, in quadrature, what the rotating mass's
 // uncertainty makes of its term (large in low gears, where the converter may also be unlocked).
-double LongitudinalExtractor::pair_noise_n(const Record& now, const Record& then) const {
-  const double rotating_n = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0) *
-                            (now.wheel_accel_mps2 - then.wheel_accel_mps2);
-  return std::hypot(force_noise_n(), vehicle_.rotating_mass_accuracy_fraction * rotating_n);
+LongitudinalExtractor::PairTerms LongitudinalExtractor::pair_terms(const Record& now,
+                                                                   const Record& then,
+                                                                   double delta_accel) const {
+  PairTerms t;
+  t.time_us = now.time_us;
+  t.delta_accel_mps2 = delta_accel;
+  t.noise_n = force_noise_n();
+  t.rotating_n = rotating_n(now, then);
+  t.pair_noise_n = std::hypot(t.noise_n, vehicle_.rotating_mass_accuracy_fraction * t.rotating_n);
+  return t;
 }
 
-Extraction LongitudinalExtractor::finish(TimeUs time_us, double delta_accel, const double* y_by_lag,
-                                         double noise_n, double pair_noise_n,
+Extraction LongitudinalExtractor::finish(const PairTerms& terms, const double* y_by_lag,
                                          Extraction out) const {
   const double y = lag_.y_at_lag(y_by_lag);
   const double min_force =
-      std::max(params_.min_abs_delta_force_n, params_.min_excitation_sigma * noise_n);
+      std::max(params_.min_abs_delta_force_n, params_.min_excitation_sigma * terms.noise_n);
   if (std::abs(y) <= min_force) {
     out.verdict = PairVerdict::kSmallDeltaForce;
     return out;
   }
+  const double delta_accel = terms.delta_accel_mps2;
   const double implied_kg = y / delta_accel;
   const double high = std::isfinite(vehicle_.max_mass_kg)
                           ? kImpliedHighPerMax * vehicle_.max_mass_kg
@@ -289,17 +300,17 @@ Extraction LongitudinalExtractor::finish(TimeUs time_us, double delta_accel, con
     return out;
   }
   out.verdict = PairVerdict::kAccepted;
-  out.pair.time_us = time_us;
+  out.pair.time_us = terms.time_us;
   out.pair.block = Block::kLongitudinal;
   out.pair.delta_accel_mps2 = delta_accel;
   out.pair.y_n = y;
   out.pair.weight = params_.weight;
-  out.pair.noise_std_n = pair_noise_n;
+  out.pair.noise_std_n = terms.pair_noise_n;
+  out.pair.rotating_n = terms.rotating_n;
   return out;
 }
 
-void LongitudinalExtractor::keep_pending(TimeUs time_us, double delta_accel, double noise_n,
-                                         double pair_noise_n) {
+void LongitudinalExtractor::keep_pending(const PairTerms& terms) {
   // A full ring drops its oldest pair (the lag takes that long only when pairs are poor).
   const std::size_t slot = (pending_next_ + pending_count_) % pending_.size();
   if (pending_count_ < pending_.size()) {
@@ -307,16 +318,15 @@ void LongitudinalExtractor::keep_pending(TimeUs time_us, double delta_accel, dou
   } else {
     pending_next_ = (pending_next_ + 1) % pending_.size();
   }
-  pending_[slot] = Pending{time_us, delta_accel, noise_n, pair_noise_n};
+  pending_[slot] = terms;
   std::copy(y_by_lag_.begin(), y_by_lag_.end(),
             pending_y_.begin() + static_cast<std::ptrdiff_t>(slot * y_by_lag_.size()));
 }
 
 bool LongitudinalExtractor::pop_released(Extraction* out) {
   if (!lag_.identified() || pending_count_ == 0) return false;
-  const Pending& p = pending_[pending_next_];
   const double* y = pending_y_.data() + pending_next_ * y_by_lag_.size();
-  *out = finish(p.time_us, p.delta_accel_mps2, y, p.noise_n, p.pair_noise_n, Extraction{});
+  *out = finish(pending_[pending_next_], y, Extraction{});
   pending_next_ = (pending_next_ + 1) % pending_.size();
   --pending_count_;
   return true;

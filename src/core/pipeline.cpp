@@ -122,12 +122,14 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
   Extraction lateral = lateral_.step(sample);
   longitudinal.pair.information = pair_information_;
   lateral.pair.information = pair_information_;
+  if (longitudinal.has_pair()) rotating_sensitivity_.add(longitudinal.pair);
   result->events[static_cast<int>(Block::kLongitudinal)] =
       supervisor_.offer(Block::kLongitudinal, longitudinal, *regressor_, &result->estimate_changed);
   // Pairs kept while the driveline lag was unknown, now at the identified lag.
   Extraction released;
   while (longitudinal_.pop_released(&released)) {
     released.pair.information = pair_information_;
+    if (released.has_pair()) rotating_sensitivity_.add(released.pair);
     supervisor_.offer_late(Block::kLongitudinal, released, *regressor_, &result->estimate_changed);
   }
   result->events[static_cast<int>(Block::kLateral)] =
@@ -405,7 +407,10 @@ double Pipeline::model_std_kg(double mass_kg) const {
                 std::pow(kUniformStdPerBound * v.wheel_radius_accuracy_fraction, 2) +
                 std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2) +
                 std::pow(params_.estimator.model_error_std_fraction, 2));
-  return relative * std::abs(mass_kg);
+  // The rotating masses' error moves the mass by their share of it, in kg (a truck's low gears).
+  const double rotating_kg = kUniformStdPerBound * v.rotating_mass_accuracy_fraction *
+                             rotating_sensitivity_.sensitivity_kg();
+  return std::hypot(relative * std::abs(mass_kg), rotating_kg);
 }
 
 double Pipeline::published_half_width(const RegressorState& state) const {

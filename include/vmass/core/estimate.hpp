@@ -69,8 +69,9 @@ struct Estimate {
   bool mass_known = false;  ///< false until a prior exists (static or empty-mass)
 
   /// Of mass_std_kg, what no amount of driving averages away: the declared accuracy of the
-  /// torque scale and the rolling radius, the accelerometer's pitch. The 95 % interval holds it
-  /// in quadrature with the regression's; the status converges on the regression's part alone.
+  /// torque scale, the rolling radius and the rotating masses, the accelerometer's pitch, the
+  /// model-error floor. The 95 % interval holds it in quadrature with the regression's; the
+  /// status converges on the regression's part alone.
   double mass_model_std_kg = 0.0;
   /// False when the regression left the plausible band [plausible_low_kg, plausible_high_kg]
   /// (below the empty mass or above the maximum permissible mass, with margins): mass_kg and

@@ -140,11 +140,20 @@ class LongitudinalExtractor {
   /// y at every candidate lag into y_by_lag_ (the filtered force L ticks earlier).
   void fill_y_by_lag(const Record& now, const Record& then);
   Extraction gate(const Record& now, const Record& then, Extraction out);
+  /// What a pair needs besides its y: kept with it while the lag is unknown.
+  struct PairTerms {
+    TimeUs time_us = 0;
+    double delta_accel_mps2 = 0.0;
+    double noise_n = 0.0;       ///< the gates' noise scale
+    double pair_noise_n = 0.0;  ///< RegressionPair::noise_std_n
+    double rotating_n = 0.0;    ///< RegressionPair::rotating_n
+  };
+  PairTerms pair_terms(const Record& now, const Record& then, double delta_accel) const;
   /// The force and plausibility gates of a pair at the identified lag.
-  Extraction finish(TimeUs time_us, double delta_accel, const double* y_by_lag, double noise_n,
-                    double pair_noise_n, Extraction out) const;
-  double pair_noise_n(const Record& now, const Record& then) const;
-  void keep_pending(TimeUs time_us, double delta_accel, double noise_n, double pair_noise_n);
+  Extraction finish(const PairTerms& terms, const double* y_by_lag, Extraction out) const;
+  /// m_rot(gear) dv' over the window, N.
+  double rotating_n(const Record& now, const Record& then) const;
+  void keep_pending(const PairTerms& terms);
 
   VehicleParams vehicle_;
   LongitudinalParams params_;
@@ -155,14 +164,8 @@ class LongitudinalExtractor {
   DelayLine<double> filtered_force_;  ///< the last max_lag + window ticks of filtered force
   LagEstimator lag_;
   std::vector<double> y_by_lag_;
-  // Pairs awaiting the lag: a ring of (time, da, noise) and their y at every lag.
-  struct Pending {
-    TimeUs time_us;
-    double delta_accel_mps2;
-    double noise_n;
-    double pair_noise_n;
-  };
-  std::vector<Pending> pending_;
+  // Pairs awaiting the lag: a ring of their terms and their y at every lag.
+  std::vector<PairTerms> pending_;
   std::vector<double> pending_y_;  ///< pending_.size() x y_by_lag_.size()
   std::size_t pending_count_ = 0;
   std::size_t pending_next_ = 0;  ///< next to release

@@ -34,6 +34,7 @@
 #include "vmass/core/load_change_monitor.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
 #include "vmass/core/rls_estimator.hpp"
+#include "vmass/core/rotating_mass_sensitivity.hpp"
 #include "vmass/core/static_initializer.hpp"
 #include "vmass/core/supervisor.hpp"
 #include "vmass/core/vehicle_params.hpp"
@@ -170,6 +171,7 @@ class Pipeline {
   RlsEstimator rls_;
   BayesEstimator bayes_;
   MassRegressor* regressor_;
+  RotatingMassSensitivity rotating_sensitivity_;  ///< of the belief's longitudinal pairs
   RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
   double pair_information_;            ///< RegressionPair::information of every extracted pair
   double monitor_pair_information_;    ///< the same for the load monitor's pairs

@@ -36,6 +36,9 @@ struct RegressionPair {
   /// The pair's own noise std, as its extractor measures it, N; 0: the regressor's configured
   /// noise applies. With it, a regressor whose noise is s weighs the pair as weight * (s / it)^2.
   double noise_std_n = 0.0;
+  /// Longitudinal: the rotating-mass term m_rot dv' already subtracted from y_n, N (0 for the
+  /// lateral block). An error in m_rot biases the mass through it (RotatingMassSensitivity).
+  double rotating_n = 0.0;
 };
 
 /// The pair's weight relative to a regressor whose noise std is reference_noise_n (see
