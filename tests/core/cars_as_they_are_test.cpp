@@ -231,6 +231,19 @@ TEST(NoLoadSensor, ASavedBeliefIsRestoredAndTheLoadReChecked) {
   EXPECT_NEAR(restored.estimate().mass_kg, after.mass_kg, 0.01 * after.mass_kg);
 }
 
+/// The estimate after a static start (eq. 3 at the drive's mass) and 296 s of driving.
+Estimate after_static_start_and_drive(const PipelineParams& p,
+                                      const testing::LongitudinalDrive& drive) {
+  Pipeline pipeline(p);
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  std::vector<Sample> samples = testing::standstill_samples(0.0, 4.0, z);
+  const auto moving = testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z);
+  samples.insert(samples.end(), moving.begin(), moving.end());
+  for (const Sample& s : samples) pipeline.step(s);
+  pipeline.flush();
+  return pipeline.estimate();
+}
+
 TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
   PipelineParams p;
   p.vehicle = testing::test_vehicle();
@@ -238,16 +251,9 @@ TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
   p.vehicle.wheel_torque_accuracy_fraction = 0.05;
   p.vehicle.wheel_radius_accuracy_fraction = 0.02;
   p.vehicle.pitch_gradient_std_deg_per_g = 0.5;
-  Pipeline pipeline(p);
   testing::LongitudinalDrive drive;
   drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
-  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
-  std::vector<Sample> samples = testing::standstill_samples(0.0, 4.0, z);
-  const auto moving = testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z);
-  samples.insert(samples.end(), moving.begin(), moving.end());
-  for (const Sample& s : samples) pipeline.step(s);
-  pipeline.flush();
-  const Estimate& e = pipeline.estimate();
+  const Estimate e = after_static_start_and_drive(p, drive);
   const double relative =
       std::sqrt(std::pow(0.05 / std::sqrt(3.0), 2) + std::pow(0.02 / std::sqrt(3.0), 2) +
                 std::pow(0.5 * 3.14159265358979 / 180.0, 2) +
@@ -276,17 +282,10 @@ double final_mass_with_rotating_error(double declared_accuracy, Estimate* estima
   p.vehicle.pitch_gradient_std_deg_per_g = 0.0;
   p.vehicle.rotating_mass_kg = 400.0;
   p.vehicle.rotating_mass_accuracy_fraction = declared_accuracy;
-  Pipeline pipeline(p);
   testing::LongitudinalDrive drive;
   drive.rotating_mass_kg = 520.0;  // the datasheet's inertia was 30 % low
   drive.accel_noise_std_mps2 = 0.01;
-  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
-  std::vector<Sample> samples = testing::standstill_samples(0.0, 4.0, z);
-  const auto moving = testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z);
-  samples.insert(samples.end(), moving.begin(), moving.end());
-  for (const Sample& s : samples) pipeline.step(s);
-  pipeline.flush();
-  *estimate = pipeline.estimate();
+  *estimate = after_static_start_and_drive(p, drive);
   return drive.mass_kg;
 }
 
