@@ -244,13 +244,19 @@ Estimate after_static_start_and_drive(const PipelineParams& p,
   return pipeline.estimate();
 }
 
-TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
+/// The test car with a load sensor and the given declared accuracies.
+PipelineParams with_declared_accuracies(double torque, double radius, double pitch_std_deg_per_g) {
   PipelineParams p;
   p.vehicle = testing::test_vehicle();
   p.suspension = testing::test_suspension();
-  p.vehicle.wheel_torque_accuracy_fraction = 0.05;
-  p.vehicle.wheel_radius_accuracy_fraction = 0.02;
-  p.vehicle.pitch_gradient_std_deg_per_g = 0.5;
+  p.vehicle.wheel_torque_accuracy_fraction = torque;
+  p.vehicle.wheel_radius_accuracy_fraction = radius;
+  p.vehicle.pitch_gradient_std_deg_per_g = pitch_std_deg_per_g;
+  return p;
+}
+
+TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
+  const PipelineParams p = with_declared_accuracies(0.05, 0.02, 0.5);
   testing::LongitudinalDrive drive;
   drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
   const Estimate e = after_static_start_and_drive(p, drive);
@@ -274,12 +280,7 @@ TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
 /// force accelerates, so an error in the configured rotating mass moves the estimate by that
 /// error times the rotating masses' share, in every pair alike.
 double final_mass_with_rotating_error(double declared_accuracy, Estimate* estimate) {
-  PipelineParams p;
-  p.vehicle = testing::test_vehicle();
-  p.suspension = testing::test_suspension();
-  p.vehicle.wheel_torque_accuracy_fraction = 0.0;
-  p.vehicle.wheel_radius_accuracy_fraction = 0.0;
-  p.vehicle.pitch_gradient_std_deg_per_g = 0.0;
+  PipelineParams p = with_declared_accuracies(0.0, 0.0, 0.0);
   p.vehicle.rotating_mass_kg = 400.0;
   p.vehicle.rotating_mass_accuracy_fraction = declared_accuracy;
   testing::LongitudinalDrive drive;

@@ -20,7 +20,8 @@ namespace vmass {
 class RotatingMassSensitivity {
  public:
   /// A pair the estimate is fitted on, weighted as the regression weighs it (its weight over its
-  /// own noise variance; any common factor cancels in S).
+  /// own noise variance; any common factor cancels in S). The pipeline hands it the extractor's
+  /// pairs: the supervisor's Huber weights and its rare > 20 sigma rejections are left out.
   void add(const RegressionPair& pair) {
     if (pair.block != Block::kLongitudinal) return;
     const double w =
