@@ -60,7 +60,9 @@ std::string Estimate::describe_reason() const {
     }
   }
   if (reason == StatusReason::kLoadChangeSuspected) {
-    text += ": the pairs since the last stop disagree with the belief (the interval spans both)";
+    text +=
+        ": the pairs since the last stop disagree with the belief (the mass is theirs, the "
+        "interval spans both)";
   }
   return text;
 }

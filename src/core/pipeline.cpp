@@ -423,9 +423,14 @@ double Pipeline::published_half_width(const RegressorState& state) const {
 
 // A suspected load change (LoadChangeMonitor::suspects): the published interval spans the main
 // belief's and the challenger's, each with the model error, so that it holds whichever is right
-// until the monitor decides; the estimate stays the main belief's.
+// until the monitor decides. The estimate is the challenger's: its own 95 % interval already
+// excludes the belief, so the drive since the stop is the better evidence of today's load.
 void Pipeline::span_challenger() {
   const RegressorState c = load_monitor_.challenger().state();
+  if (c.mass_kg >= estimate_.plausible_low_kg && c.mass_kg <= estimate_.plausible_high_kg) {
+    estimate_.mass_kg = c.mass_kg;
+    estimate_.mu_n = c.mu_n;
+  }
   const double half_width = published_half_width(c);
   estimate_.ci_low_kg = std::min(estimate_.ci_low_kg, c.mass_kg - half_width);
   estimate_.ci_high_kg = std::max(estimate_.ci_high_kg, c.mass_kg + half_width);

@@ -162,7 +162,8 @@ struct LoadingStop {
 
 // Given a car without a load sensor that stops for 10 s and drives on 300 kg heavier, the
 // interval spans the new mass as soon as the drive since the stop doubts the old belief
-// (load_change_suspected, never converged), before the new belief is adopted.
+// (load_change_suspected, never converged), before the new belief is adopted; the published
+// mass is then the drive's since the stop, nearer the new mass than the old.
 TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
   const PipelineParams p = no_load_sensor_params();
   Pipeline pipeline(p);
@@ -170,17 +171,20 @@ TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
   const Estimate at_stop = drive.drive_and_stop(&pipeline, p.vehicle);
   ASSERT_NEAR(at_stop.mass_kg, drive.before.mass_kg, 0.02 * drive.before.mass_kg);
   const double new_mass_kg = drive.after.mass_kg;
-  long suspected = 0, suspected_and_covered = 0;
+  long suspected = 0, suspected_and_covered = 0, nearer_the_new_mass = 0;
   for (const Sample& s : drive.drive_on(p.vehicle)) {
     pipeline.step(s);
     const Estimate& e = pipeline.estimate();
     if (e.reason != StatusReason::kLoadChangeSuspected) continue;
     ++suspected;
     suspected_and_covered += e.ci_low_kg <= new_mass_kg && new_mass_kg <= e.ci_high_kg;
+    nearer_the_new_mass +=
+        std::abs(e.mass_kg - new_mass_kg) < std::abs(e.mass_kg - drive.before.mass_kg);
     EXPECT_EQ(e.status, EstimateStatus::kConverging);
   }
   EXPECT_GT(suspected, 100);  // a second of ticks at least
   EXPECT_EQ(suspected_and_covered, suspected);
+  EXPECT_EQ(nearer_the_new_mass, suspected);
   pipeline.flush();
   EXPECT_EQ(pipeline.estimate().prior_reason, StatusReason::kLoadChanged);  // then decided
   EXPECT_NEAR(pipeline.estimate().mass_kg, new_mass_kg, 0.02 * new_mass_kg);

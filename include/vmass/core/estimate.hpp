@@ -41,7 +41,8 @@ enum class StatusReason : std::uint8_t {
   kNoLoadSensor,              ///< no deflection sensor that carries the load (none, or a
                               ///< self-levelling axle): prior = empty + half the capacity
   kLoadChangeSuspected,       ///< converging: since a stop, the drive disagrees with the belief
-                              ///< (LoadChangeMonitor::suspects); the interval spans both
+                              ///< (LoadChangeMonitor::suspects); the interval spans both,
+                              ///< the mass is the drive's since the stop
 };
 
 std::string_view status_name(EstimateStatus s);

@@ -12,9 +12,9 @@
 //   and > min_change_fraction M_empty, after min_pairs pairs of the challenger,
 // the load changed at that stop: the challenger's belief becomes the estimate. Before that, once
 // the challenger's own 95 % interval excludes the main estimate (by more than
-// min_change_fraction M_empty), the change is suspected: the pipeline then publishes an interval
-// that spans both beliefs (suspects()), since the drive since the stop says the main one may
-// no longer hold. A later stop
+// min_change_fraction M_empty), the change is suspected: the pipeline then publishes the
+// challenger's mass with an interval that spans both beliefs (suspects()), since the drive
+// since the stop says the main one may no longer hold. A later stop
 // restarts the challenger; when nothing changed it simply agrees with the main belief and is
 // dropped at the next stop.
 //
@@ -36,11 +36,11 @@ struct LoadChangeParams {
   double decide_sigma = 4.0;
   double min_change_fraction = 0.03;  ///< of the empty mass
   long min_pairs = 300;               ///< challenger pairs before it may decide
-  /// The challenger's own differencing (the tick rate is the estimator's). Quicker than the
-  /// belief's: a load change is decided on many short, independent pairs, while the belief
-  /// wants the slow filter's smaller bias.
-  double differencing_dt_s = 0.4;
-  double filter_cutoff_hz = 1.0;
+  /// The challenger's own differencing (the tick rate is the estimator's); by default the
+  /// belief's. In another band the two differ by what the model leaves out (the driveline mode
+  /// grows with the band) and the challenger is suspected of a change that did not happen.
+  double differencing_dt_s = 0.6;
+  double filter_cutoff_hz = 0.7;
 
   std::string validate() const;
 };
