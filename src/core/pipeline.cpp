@@ -139,7 +139,12 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
 void Pipeline::offer_monitor_pairs(const Sample& sample) {
   // The challenger is judged against the belief as it was before the stop: the pairs since
   // then, of a load that may have changed, must not pull the reference towards the challenger.
-  if (load_monitor_.step(sample)) belief_before_stop_ = regressor_->state();
+  if (load_monitor_.step(sample)) {
+    belief_before_stop_ = regressor_->state();
+    // A belief no drive has informed yet (the prior alone) holds nothing a challenger could
+    // contradict: the drive after this stop simply refines it.
+    if (belief_before_stop_.pairs_used == 0) load_monitor_.dismiss();
+  }
   Extraction longitudinal = monitor_longitudinal_.step(sample);
   Extraction lateral = monitor_lateral_.step(sample);
   Extraction released;

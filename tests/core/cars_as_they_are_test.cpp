@@ -190,6 +190,33 @@ TEST(NoLoadSensor, ALoadChangeInMotionIsSuspectedBeforeItIsDecided) {
   EXPECT_NEAR(pipeline.estimate().mass_kg, new_mass_kg, 0.02 * new_mass_kg);
 }
 
+// Given a car without a load sensor that stands 10 s before its first drive (the usual start)
+// and carries 150 kg less than its prior's mass, the drive refines the prior: with no drive
+// before the stop there is no belief a challenger could contradict, so no load change is
+// suspected (it was, against the prior itself, and the status said so all drive long).
+TEST(NoLoadSensor, AStopBeforeTheFirstDriveIsNoLoadChange) {
+  const PipelineParams p = no_load_sensor_params();
+  Pipeline pipeline(p);
+  testing::LongitudinalDrive drive;
+  drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  drive.accel_noise_std_mps2 = 0.02;
+  drive.force_noise_std_n = 60.0;
+  Sample stand = testing::longitudinal_samples(drive, p.vehicle, 0.0, 0.01, 0.0, 0.0)[0];
+  for (double t = 0.0; t < 10.0; t += 0.01) {
+    stand.time_us = from_seconds(t);
+    pipeline.step(stand);
+  }
+  long suspected = 0;
+  for (const Sample& s : testing::longitudinal_samples(drive, p.vehicle, 10.0, 200.0, 15.0, 0.0)) {
+    pipeline.step(s);
+    suspected += pipeline.estimate().reason == StatusReason::kLoadChangeSuspected;
+  }
+  pipeline.flush();
+  EXPECT_EQ(suspected, 0);
+  EXPECT_EQ(pipeline.estimate().prior_reason, StatusReason::kNoLoadSensor);
+  EXPECT_NEAR(pipeline.estimate().mass_kg, drive.mass_kg, 0.02 * drive.mass_kg);
+}
+
 // Given a short drive before a stop (a weak belief) and 300 kg more after it, the belief drifts
 // towards the new load as it takes the new pairs, so that the challenger would never differ
 // from it enough: the challenger is judged against the belief as it was before the stop.
