@@ -163,6 +163,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     int min_pairs = static_cast<int>(p.min_pairs);
     s.read("min_pairs", &min_pairs);
     p.min_pairs = min_pairs;
+    s.read("batch_size", &p.batch_size);
     s.read("differencing_dt_s", &p.differencing_dt_s);
     s.read("filter_cutoff_hz", &p.filter_cutoff_hz);
     s.reject_unknown_keys();

@@ -12,8 +12,18 @@ std::string LoadChangeParams::validate() const {
   c.positive("decide_sigma", decide_sigma);
   c.non_negative("min_change_fraction", min_change_fraction);
   if (min_pairs < 1) c.fail("min_pairs", "must be >= 1");
+  if (batch_size < 0) c.fail("batch_size", "must be >= 0 (0: the estimator's bayes.batch_size)");
   return c.message();
 }
+
+namespace {
+
+BayesParams challenger_bayes_params(BayesParams bayes, int batch_size) {
+  if (batch_size > 0) bayes.batch_size = batch_size;
+  return bayes;
+}
+
+}  // namespace
 
 LoadChangeMonitor::LoadChangeMonitor(const LoadChangeParams& params, const RlsParams& rls,
                                      const BayesParams& bayes, bool use_rls,
@@ -21,7 +31,7 @@ LoadChangeMonitor::LoadChangeMonitor(const LoadChangeParams& params, const RlsPa
                                      double standstill_speed_mps)
     : params_(params),
       rls_(rls),
-      bayes_(bayes),
+      bayes_(challenger_bayes_params(bayes, params.batch_size)),
       use_rls_(use_rls),
       start_prior_(start_prior),
       empty_mass_kg_(empty_mass_kg),

@@ -103,6 +103,17 @@ TEST(Config, TheLoadMonitorHasItsOwnDifferencing) {
       << bad.error;
 }
 
+TEST(Config, TheLoadMonitorsBatchIsReadAndChecked) {
+  const ConfigLoad ok = load_config_text(
+      std::string(kMinimal) + "estimator:\n  load_change:\n    batch_size: 25\n", "batch.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_EQ(ok.config->pipeline.estimator.load_change.batch_size, 25);
+  const ConfigLoad bad = load_config_text(
+      std::string(kMinimal) + "estimator:\n  load_change:\n    batch_size: -3\n", "batch.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("estimator.load_change.batch_size"), std::string::npos) << bad.error;
+}
+
 TEST(Config, RawSectionsAreKeptForTheirLayers) {
   const ConfigLoad c = load_config_text(
       std::string(kMinimal) + "lcm:\n  url: memq://\ncan:\n  dbc: car.dbc\n", "raw.yaml");

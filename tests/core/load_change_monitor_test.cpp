@@ -113,6 +113,32 @@ TEST_P(LoadChangeMonitorTest, AChangeIsSuspectedOnceTheChallengersIntervalExclud
   EXPECT_FALSE(m.suspects(belief(1600.0, 5.0)));
 }
 
+TEST(LoadChangeMonitor, ABayesChallengerSuspectsAfterItsOwnBatchNotTheEstimators) {
+  LoadChangeParams own_batch;  // the default: its own batch of 10
+  LoadChangeParams estimators_batch;
+  estimators_batch.batch_size = 0;  // bayes.batch_size: 100 pairs
+  LoadChangeMonitor quick(own_batch, RlsParams{}, BayesParams{}, false, start_prior(), kEmptyKg,
+                          0.05);
+  LoadChangeMonitor slow(estimators_batch, RlsParams{}, BayesParams{}, false, start_prior(),
+                         kEmptyKg, 0.05);
+  ASSERT_EQ(own_batch.batch_size, 10);
+  for (LoadChangeMonitor* m : {&quick, &slow}) {
+    stop_then_drive(m, 0.0, 6.0);
+    offer_pairs(m, 1900.0, 10, 6);
+  }
+  EXPECT_TRUE(quick.suspects(belief(1600.0, 5.0)));
+  EXPECT_EQ(quick.challenger().state().pairs_used, 10);
+  EXPECT_FALSE(slow.suspects(belief(1600.0, 5.0)));  // its posterior has not moved yet
+  EXPECT_EQ(slow.challenger().state().pairs_used, 0);
+}
+
+TEST(LoadChangeParams, ANegativeBatchSizeIsRefusedByName) {
+  LoadChangeParams p;
+  p.batch_size = -1;
+  EXPECT_NE(p.validate().find("estimator.load_change.batch_size"), std::string::npos)
+      << p.validate();
+}
+
 INSTANTIATE_TEST_SUITE_P(BothRegressors, LoadChangeMonitorTest, ::testing::Values(false, true));
 
 }  // namespace
