@@ -219,6 +219,22 @@ struct ValueReader {
   }
 };
 
+/// A reason a belief can have started from (Pipeline::restart, restore): a car without a load
+/// sensor saves no_load_sensor, which comes after restored in the enumeration.
+bool starts_a_belief(long long n) {
+  switch (n) {
+    case static_cast<long long>(StatusReason::kWaitingForStandstill):
+    case static_cast<long long>(StatusReason::kStaticInitialised):
+    case static_cast<long long>(StatusReason::kLoadChanged):
+    case static_cast<long long>(StatusReason::kNoStaticPrior):
+    case static_cast<long long>(StatusReason::kRestored):
+    case static_cast<long long>(StatusReason::kNoLoadSensor):
+      return true;
+    default:
+      return false;
+  }
+}
+
 /// fingerprint, saved_time_us, type and prior_reason: the fields outside the table.
 std::string read_header_fields(const ValueReader& in, SavedState* out) {
   std::string fingerprint, type;
@@ -233,9 +249,7 @@ std::string read_header_fields(const ValueReader& in, SavedState* out) {
   if (type != "rls" && type != "bayes") return "type: expected rls or bayes, got '" + type + "'";
   out->snapshot.type = type == "rls" ? RegressorType::kRls : RegressorType::kBayes;
   if (std::string e = in.integer("prior_reason", &n); !e.empty()) return e;
-  if (n < 0 || n > static_cast<long long>(StatusReason::kRestored)) {
-    return "prior_reason: out of range";
-  }
+  if (!starts_a_belief(n)) return "prior_reason: out of range";
   out->snapshot.prior_reason = static_cast<StatusReason>(n);
   return "";
 }
