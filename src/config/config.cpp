@@ -129,6 +129,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
     lag.read("min_correlation", &p.lag.min_correlation);
     lag.read("min_evidence_s", &p.lag.min_evidence_s);
     lag.read("fixed_lag_s", &p.lag.fixed_lag_s);
+    lag.read("provisional_std_s", &p.lag.provisional_std_s);
     lag.reject_unknown_keys();
     s.reject_unknown_keys();
   }

@@ -42,6 +42,8 @@ std::string_view reason_name(StatusReason r) {
       return "no_load_sensor";
     case StatusReason::kLoadChangeSuspected:
       return "load_change_suspected";
+    case StatusReason::kLagProvisional:
+      return "lag_provisional";
   }
   return "unknown";
 }
@@ -63,6 +65,11 @@ std::string Estimate::describe_reason() const {
     text +=
         ": the pairs since the last stop disagree with the belief (the mass is theirs, the "
         "interval spans both)";
+  }
+  if (reason == StatusReason::kLagProvisional) {
+    text +=
+        ": the driveline lag is not identified yet; the pairs held until it is enter at the best "
+        "fit so far, the interval includes the lag's uncertainty";
   }
   return text;
 }

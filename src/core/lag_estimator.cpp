@@ -14,6 +14,7 @@ std::string LagParams::validate() const {
   c.in_open_range("min_correlation", min_correlation, 0.0, 1.0);
   c.non_negative("min_evidence_s", min_evidence_s);
   if (fixed_lag_s > max_lag_s) c.fail("fixed_lag_s", "must be at most max_lag_s");
+  c.non_negative("provisional_std_s", provisional_std_s);
   return c.message();
 }
 
@@ -51,6 +52,20 @@ void LagEstimator::add(double delta_accel_mps2, const double* y_by_lag) {
 
 void LagEstimator::update_estimate() {
   if (evidence_s_ < params_.min_evidence_s) return;
+  double correlation = 0.0;
+  const double lag_s = peak_lag_s(&correlation);
+  if (correlation < params_.min_correlation) return;
+  lag_s_ = lag_s;
+  identified_ = true;
+}
+
+double LagEstimator::best_lag_s() const {
+  if (identified_ || max_lag_ == 0 || !(s_aa_ > 0.0)) return lag_s_;
+  double correlation = 0.0;
+  return peak_lag_s(&correlation);
+}
+
+double LagEstimator::peak_lag_s(double* correlation) const {
   auto rho = [&](int lag) {
     const auto i = static_cast<std::size_t>(lag);
     const double d = std::sqrt(s_aa_ * s_yy_[i]);
@@ -61,7 +76,6 @@ void LagEstimator::update_estimate() {
     if (rho(lag) > rho(best)) best = lag;
   }
   const double peak = rho(best);
-  if (peak < params_.min_correlation) return;
   // Parabola through the peak and its neighbours: the vertex, within half a tick.
   double offset = 0.0;
   if (best > 0 && best < max_lag_) {
@@ -70,12 +84,12 @@ void LagEstimator::update_estimate() {
     const double curvature = l - 2.0 * peak + r;
     if (curvature < 0.0) offset = std::clamp(0.5 * (l - r) / curvature, -0.5, 0.5);
   }
-  lag_s_ = (static_cast<double>(best) + offset) / rate_hz_;
-  identified_ = true;
+  *correlation = peak;
+  return (static_cast<double>(best) + offset) / rate_hz_;
 }
 
-double LagEstimator::y_at_lag(const double* y_by_lag) const {
-  const double ticks = std::clamp(lag_s_ * rate_hz_, 0.0, static_cast<double>(max_lag_));
+double LagEstimator::y_at(const double* y_by_lag, double lag_s) const {
+  const double ticks = std::clamp(lag_s * rate_hz_, 0.0, static_cast<double>(max_lag_));
   const auto low = static_cast<int>(std::floor(ticks));
   const int high = std::min(low + 1, max_lag_);
   const double frac = ticks - static_cast<double>(low);

@@ -264,7 +264,7 @@ Extraction LongitudinalExtractor::gate(const Record& now, const Record& then, Ex
     out.verdict = PairVerdict::kAwaitingLag;
     return out;
   }
-  return finish(terms, y_by_lag_.data(), out);
+  return finish(terms, lag_.y_at_lag(y_by_lag_.data()), out);
 }
 
 // The pair's own noise: the measured residual scale and, in quadrature, what the rotating mass's
@@ -281,9 +281,7 @@ LongitudinalExtractor::PairTerms LongitudinalExtractor::pair_terms(const Record&
   return t;
 }
 
-Extraction LongitudinalExtractor::finish(const PairTerms& terms, const double* y_by_lag,
-                                         Extraction out) const {
-  const double y = lag_.y_at_lag(y_by_lag);
+Extraction LongitudinalExtractor::finish(const PairTerms& terms, double y, Extraction out) const {
   const double min_force =
       std::max(params_.min_abs_delta_force_n, params_.min_excitation_sigma * terms.noise_n);
   if (std::abs(y) <= min_force) {
@@ -326,10 +324,17 @@ void LongitudinalExtractor::keep_pending(const PairTerms& terms) {
 bool LongitudinalExtractor::pop_released(Extraction* out) {
   if (!lag_.identified() || pending_count_ == 0) return false;
   const double* y = pending_y_.data() + pending_next_ * y_by_lag_.size();
-  *out = finish(pending_[pending_next_], y, Extraction{});
+  *out = finish(pending_[pending_next_], lag_.y_at_lag(y), Extraction{});
   pending_next_ = (pending_next_ + 1) % pending_.size();
   --pending_count_;
   return true;
+}
+
+Extraction LongitudinalExtractor::provisional(std::size_t i, double lag_s) const {
+  if (i >= pending_count_) return Extraction{};
+  const std::size_t slot = (pending_next_ + i) % pending_.size();
+  const double* y = pending_y_.data() + slot * y_by_lag_.size();
+  return finish(pending_[slot], lag_.y_at(y, lag_s), Extraction{});
 }
 
 Extraction LongitudinalExtractor::step(const Sample& s) {

@@ -371,7 +371,8 @@ void Pipeline::refresh_belief() {
     }
     return;
   }
-  const RegressorState state = regressor_->state();
+  RegressorState state = belief_state();
+  const bool provisional = provisional_state(&state);
   publish_state(state);
   const LagEstimator& lag = longitudinal_.lag();
   estimate_.driveline_lag_s = lag.identified() ? lag.lag_s() : -1.0;
@@ -383,6 +384,9 @@ void Pipeline::refresh_belief() {
   if (estimate_.invalid_inputs != 0) {
     estimate_.status = EstimateStatus::kDegraded;
     estimate_.reason = StatusReason::kInputsInvalid;
+  } else if (provisional) {
+    estimate_.status = EstimateStatus::kConverging;
+    estimate_.reason = StatusReason::kLagProvisional;
   } else if (state.pairs_used == 0) {
     const bool static_prior = prior_reason_ != StatusReason::kNoStaticPrior &&
                               prior_reason_ != StatusReason::kNoLoadSensor;
@@ -400,6 +404,64 @@ void Pipeline::refresh_belief() {
     estimate_.status = narrow ? EstimateStatus::kConverged : EstimateStatus::kConverging;
     estimate_.reason = narrow ? StatusReason::kIntervalNarrow : StatusReason::kRefining;
   }
+}
+
+namespace {
+
+// A copy of the belief updated with the held pairs at lag_s; false when none passes the gates.
+template <class Regressor>
+bool with_held_pairs(Regressor scratch, const LongitudinalExtractor& block, double lag_s,
+                     double information, RegressorState* out) {
+  bool any = false;
+  for (std::size_t i = 0; i < block.pending_count(); ++i) {
+    Extraction held = block.provisional(i, lag_s);
+    if (!held.has_pair()) continue;
+    held.pair.information = information;
+    scratch.update(held.pair);
+    any = true;
+  }
+  if (!any) return false;
+  scratch.flush();
+  *out = scratch.state();
+  return true;
+}
+
+}  // namespace
+
+RegressorState Pipeline::belief_state() const {
+  if (regressor_ != &bayes_ || bayes_.pending_pairs() == 0) return regressor_->state();
+  BayesEstimator scratch = bayes_;
+  scratch.flush();
+  return scratch.state();
+}
+
+bool Pipeline::provisional_state(RegressorState* out) const {
+  const LagEstimator& lag = longitudinal_.lag();
+  const double spread_s = params_.estimator.longitudinal.lag.provisional_std_s;
+  if (lag.identified() || longitudinal_.pending_count() == 0 || !(spread_s > 0.0)) return false;
+  const double max_lag_s = params_.estimator.longitudinal.lag.max_lag_s;
+  const double best_s = lag.best_lag_s();
+  // The mass at the best fit and a lag's std either way (clamped to the candidate range).
+  RegressorState at[3];
+  const double lags[3] = {best_s, std::max(best_s - spread_s, 0.0),
+                          std::min(best_s + spread_s, max_lag_s)};
+  for (int k = 0; k < 3; ++k) {
+    const bool ok = params_.estimator.type == RegressorType::kBayes
+                        ? with_held_pairs(bayes_, longitudinal_, lags[k], pair_information_, &at[k])
+                        : with_held_pairs(rls_, longitudinal_, lags[k], pair_information_, &at[k]);
+    if (!ok) return false;
+  }
+  // The lag's uncertainty adds to the regression's in quadrature, at the interval's quantile.
+  RegressorState state = at[0];
+  const double lag_std_kg = 0.5 * std::abs(at[2].mass_kg - at[1].mass_kg);
+  const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);
+  const double z = state.mass_std_kg > 0.0 ? half_width / state.mass_std_kg : kNormal95;
+  const double widened = std::hypot(half_width, z * lag_std_kg);
+  state.mass_std_kg = std::hypot(state.mass_std_kg, lag_std_kg);
+  state.ci_low_kg = state.mass_kg - widened;
+  state.ci_high_kg = state.mass_kg + widened;
+  *out = state;
+  return true;
 }
 
 double Pipeline::model_std_kg(double mass_kg) const {

@@ -114,6 +114,17 @@ TEST(Config, TheLoadMonitorsBatchIsReadAndChecked) {
   EXPECT_NE(bad.error.find("estimator.load_change.batch_size"), std::string::npos) << bad.error;
 }
 
+TEST(Config, TheProvisionalLagSpreadIsReadAndChecked) {
+  const std::string section = "estimator:\n  longitudinal:\n    lag:\n      provisional_std_s: ";
+  const ConfigLoad ok = load_config_text(std::string(kMinimal) + section + "0.05\n", "lag.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_EQ(ok.config->pipeline.estimator.longitudinal.lag.provisional_std_s, 0.05);
+  const ConfigLoad bad = load_config_text(std::string(kMinimal) + section + "-0.01\n", "lag.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("estimator.longitudinal.lag.provisional_std_s"), std::string::npos)
+      << bad.error;
+}
+
 TEST(Config, RawSectionsAreKeptForTheirLayers) {
   const ConfigLoad c = load_config_text(
       std::string(kMinimal) + "lcm:\n  url: memq://\ncan:\n  dbc: car.dbc\n", "raw.yaml");

@@ -64,6 +64,22 @@ TEST(LagEstimator, NotIdentifiedBeforeItsEvidence) {
   EXPECT_TRUE(lag.identified());
 }
 
+TEST(LagEstimator, BeforeItsEvidenceTheBestFitSoFarIsOfferedButNotUsed) {
+  LagParams p;
+  p.min_evidence_s = 5.0;
+  LagEstimator lag(p, kRateHz);
+  EXPECT_EQ(lag.best_lag_s(), 0.0);  // no pair yet
+  LaggedPairs pairs{6.0};
+  pairs.feed(&lag, 1.0);
+  EXPECT_FALSE(lag.identified());
+  EXPECT_EQ(lag.lag_s(), 0.0);
+  EXPECT_NEAR(lag.best_lag_s(), 0.06, 0.01);
+  std::vector<double> y(static_cast<std::size_t>(lag.max_lag_ticks()) + 1);
+  for (std::size_t l = 0; l < y.size(); ++l) y[l] = 10.0 * static_cast<double>(l);
+  EXPECT_NEAR(lag.y_at(y.data(), 0.045), 45.0, 1e-9);  // between ticks 4 and 5
+  EXPECT_NEAR(lag.y_at(y.data(), 1.0), 150.0, 1e-9);   // clamped to the longest candidate
+}
+
 TEST(LagEstimator, AFixedLagIsUsedAsGiven) {
   LagParams p;
   p.fixed_lag_s = 0.03;

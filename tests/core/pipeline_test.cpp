@@ -180,9 +180,10 @@ TEST_P(PipelineTest, DrivingBeforeAnyStandstillStartsFromTheEmptyMass) {
   EXPECT_NEAR(r.estimates.back().mass_kg, drive.mass_kg, 0.01 * drive.mass_kg);
 }
 
-TEST_P(PipelineTest, FlushPutsEveryAcceptedPairIntoTheEstimate) {
-  // Given a drive that ends with a Bayes batch open, when the pipeline is flushed, then the
-  // estimate uses every accepted pair (RLS: it already does; flush changes nothing).
+TEST_P(PipelineTest, ThePublishedEstimateUsesEveryAcceptedPairFlushedOrNot) {
+  // Given a drive that ends with a Bayes batch open, the published estimate already includes
+  // the open batch (conjugacy: the posterior a batch boundary would give); flushing it into the
+  // regressor's posterior changes nothing published (RLS: nothing is ever held back).
   const PipelineParams p = params(GetParam());
   testing::LongitudinalDrive drive;
   drive.force_noise_std_n = 30.0;
@@ -194,17 +195,22 @@ TEST_P(PipelineTest, FlushPutsEveryAcceptedPairIntoTheEstimate) {
   const Estimate before = r.estimates.back();
   const long accepted = before.blocks[0].accepted + before.blocks[1].accepted;
   ASSERT_GT(accepted, 0);
+  EXPECT_EQ(before.pairs_used, accepted);
+  const long held_back = accepted - pipeline.regressor().state().pairs_used;
   const bool changed = pipeline.flush();
   const Estimate& after = pipeline.estimate();
   EXPECT_EQ(after.pairs_used, accepted);
   EXPECT_EQ(after.time_us, before.time_us);
+  EXPECT_DOUBLE_EQ(after.mass_kg, before.mass_kg);
+  EXPECT_DOUBLE_EQ(after.ci_high_kg, before.ci_high_kg);
   if (GetParam() == RegressorType::kRls) {
+    EXPECT_EQ(held_back, 0);
     EXPECT_FALSE(changed);
-    EXPECT_EQ(after.mass_kg, before.mass_kg);
   } else {
     ASSERT_NE(accepted % p.estimator.bayes.batch_size, 0) << "the drive must end mid-batch";
-    EXPECT_TRUE(changed);
-    EXPECT_LT(before.pairs_used, accepted);
+    EXPECT_GT(held_back, 0);
+    EXPECT_TRUE(changed);  // the regressor's own posterior took the open batch
+    EXPECT_EQ(pipeline.regressor().state().pairs_used, accepted);
   }
   EXPECT_FALSE(pipeline.flush());
 }
@@ -223,6 +229,40 @@ TEST_P(PipelineTest, TheEstimateSaysWhereItsPriorCameFrom) {
   const DriveRun b =
       run(rolling, testing::longitudinal_samples(drive, p.vehicle, 0.0, 10.0, 10.0, z));
   EXPECT_EQ(b.estimates.back().prior_reason, StatusReason::kNoStaticPrior);
+}
+
+TEST_P(PipelineTest, BeforeTheLagIsIdentifiedTheHeldPairsGiveAProvisionalEstimate) {
+  // Given a drive that starts rolling (prior: the empty mass, 150 kg low) and a lag that needs
+  // 10 s of pairs, when 6 s have been driven, then the estimate is the held pairs' at the best
+  // fit so far (reason lag_provisional, never converged), and once the lag is identified the
+  // belief is exactly the one without a provisional estimate: the held pairs enter only then.
+  PipelineParams p = params(GetParam());
+  p.estimator.longitudinal.lag.min_evidence_s = 10.0;
+  PipelineParams without = p;
+  without.estimator.longitudinal.lag.provisional_std_s = 0.0;
+  testing::LongitudinalDrive drive;
+  drive.force_noise_std_n = 30.0;
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  const std::vector<Sample> samples =
+      testing::longitudinal_samples(drive, p.vehicle, 0.0, 40.0, 10.0, z);
+  Pipeline provisional(p);
+  Pipeline held(without);
+  const DriveRun a = run(provisional, samples);
+  const DriveRun b = run(held, samples);
+  const std::size_t at_6s = 600;
+  const Estimate& early = a.estimates[at_6s];
+  EXPECT_EQ(early.driveline_lag_s, -1.0);
+  EXPECT_EQ(early.reason, StatusReason::kLagProvisional);
+  EXPECT_EQ(early.status, EstimateStatus::kConverging);
+  EXPECT_NEAR(early.mass_kg, drive.mass_kg, 0.02 * drive.mass_kg);
+  EXPECT_LE(early.ci_low_kg, drive.mass_kg);
+  EXPECT_GE(early.ci_high_kg, drive.mass_kg);
+  EXPECT_EQ(b.estimates[at_6s].reason, StatusReason::kNoStaticPrior);
+  EXPECT_DOUBLE_EQ(b.estimates[at_6s].mass_kg, p.vehicle.empty_mass_kg);
+  ASSERT_GE(a.estimates.back().driveline_lag_s, 0.0);
+  EXPECT_EQ(a.estimates.back().mass_kg, b.estimates.back().mass_kg);
+  EXPECT_EQ(a.estimates.back().ci_high_kg, b.estimates.back().ci_high_kg);
+  EXPECT_NE(a.estimates.back().reason, StatusReason::kLagProvisional);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothRegressors, PipelineTest,

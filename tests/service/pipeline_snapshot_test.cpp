@@ -72,6 +72,7 @@ TEST_P(PipelineSnapshotTest, RestoreGivesBackTheSameBelief) {
   const test::DriveSpec spec;
   Pipeline original(params);
   drive(original, test::make_drive(spec));
+  original.flush();  // as the daemon before its final save: the open batch is published too
   const PipelineSnapshot saved = original.snapshot();
   ASSERT_TRUE(saved.has_prior);
   ASSERT_TRUE(saved.has_reference);
@@ -94,6 +95,7 @@ TEST_P(PipelineSnapshotTest, SameLoadAfterRestartKeepsTheEstimate) {
   Pipeline original(params);
   const std::vector<Sample> first = test::make_drive(spec);
   drive(original, first);
+  original.flush();  // as the daemon before its final save: the open batch is published too
   const PipelineSnapshot saved = original.snapshot();
 
   // Restart: the next drive starts standing with the same load.
@@ -115,6 +117,7 @@ TEST_P(PipelineSnapshotTest, LoadChangedWhileOffRestartsFromTheNewStaticMass) {
   Pipeline original(params);
   const std::vector<Sample> first = test::make_drive(spec);
   drive(original, first);
+  original.flush();  // as the daemon before its final save: the open batch is published too
   const PipelineSnapshot saved = original.snapshot();
 
   // While the daemon was off, 300 kg were loaded.
@@ -201,6 +204,28 @@ TEST_F(StateFileTest, TextRoundTripIsExact) {
   EXPECT_EQ(back.fingerprint, state_.fingerprint);
   EXPECT_EQ(back.saved_time_us, state_.saved_time_us);
   expect_same(back.snapshot, state_.snapshot);
+}
+
+TEST_F(StateFileTest, EveryReasonABeliefStartsFromIsReadBack) {
+  // A car without a load sensor saves no_load_sensor (8, after restored in the enumeration): a
+  // range check up to restored refused its file, and the car began again at every restart.
+  for (const StatusReason reason :
+       {StatusReason::kStaticInitialised, StatusReason::kLoadChanged, StatusReason::kNoStaticPrior,
+        StatusReason::kRestored, StatusReason::kNoLoadSensor}) {
+    SavedState state = state_;
+    state.snapshot.prior_reason = reason;
+    SavedState back;
+    std::string error;
+    ASSERT_TRUE(service::parse_state(service::format_state(state), &back, &error))
+        << reason_name(reason) << ": " << error;
+    EXPECT_EQ(back.snapshot.prior_reason, reason);
+  }
+  SavedState suspected = state_;
+  suspected.snapshot.prior_reason = StatusReason::kLoadChangeSuspected;  // not a prior's reason
+  SavedState back;
+  std::string error;
+  EXPECT_FALSE(service::parse_state(service::format_state(suspected), &back, &error));
+  EXPECT_NE(error.find("prior_reason"), std::string::npos) << error;
 }
 
 TEST_F(StateFileTest, AtomicWriteReplacesAndLeavesNoTemporary) {

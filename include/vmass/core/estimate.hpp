@@ -43,6 +43,9 @@ enum class StatusReason : std::uint8_t {
   kLoadChangeSuspected,       ///< converging: since a stop, the drive disagrees with the belief
                               ///< (LoadChangeMonitor::suspects); the interval spans both,
                               ///< the mass is the drive's since the stop
+  kLagProvisional,            ///< converging: the driveline lag is not identified yet; the
+                              ///< estimate takes the held pairs at the best fit so far, its
+                              ///< interval what the lag's uncertainty does to the mass
 };
 
 std::string_view status_name(EstimateStatus s);

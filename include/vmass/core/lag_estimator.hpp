@@ -30,6 +30,11 @@ struct LagParams {
   double min_correlation = 0.5;
   double min_evidence_s = 2.0;  ///< of accepted pairs
   double fixed_lag_s = -1.0;    ///< >= 0: use this lag instead of identifying it
+  /// How far the best fit over the first pairs may be from the lag they identify, s: the
+  /// provisional estimate (Pipeline, before the lag is identified) takes the held pairs at the
+  /// best fit, and its interval what this much lag either way does to the mass. 0: no
+  /// provisional estimate (the prior stays published until the lag is identified).
+  double provisional_std_s = 0.03;
 
   std::string validate() const;
 };
@@ -43,16 +48,24 @@ class LagEstimator {
   /// One excited pair: its da and its y at every candidate lag (y_by_lag[0..max_lag_ticks()]).
   void add(double delta_accel_mps2, const double* y_by_lag);
   /// y at the identified lag (linear between ticks).
-  double y_at_lag(const double* y_by_lag) const;
+  double y_at_lag(const double* y_by_lag) const { return y_at(y_by_lag, lag_s_); }
+  /// y at any lag in [0, max_lag_ticks()] ticks, s (linear between ticks).
+  double y_at(const double* y_by_lag, double lag_s) const;
   /// Forget the evidence (a new vehicle).
   void reset();
 
   /// The lag in use, s (0 until identified; fixed_lag_s when fixed).
   double lag_s() const { return lag_s_; }
   bool identified() const { return identified_; }
+  /// The lag the evidence so far points to, s: lag_s() once identified, else the best fit over
+  /// the pairs seen (however few; 0 before any). For a provisional estimate, never for pairs
+  /// that enter the belief.
+  double best_lag_s() const;
 
  private:
   void update_estimate();
+  /// The lag of the best fit, s, and its correlation.
+  double peak_lag_s(double* correlation) const;
 
   LagParams params_;
   double rate_hz_;

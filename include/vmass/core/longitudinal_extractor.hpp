@@ -90,6 +90,12 @@ class LongitudinalExtractor {
   /// Pairs kept while the lag was unknown, one per call, at the identified lag (gated as in
   /// step()); false when none is left. Call after each step().
   bool pop_released(Extraction* out);
+  /// Pairs held while the lag is unknown (those pop_released() will release).
+  std::size_t pending_count() const { return pending_count_; }
+  /// The i-th held pair (0: the oldest) at lag_s (in [0, max_lag_s]), gated as in step(). For a
+  /// provisional estimate only: the pair that enters the belief is the one pop_released() gives
+  /// once the lag is identified.
+  Extraction provisional(std::size_t i, double lag_s) const;
   /// Forget the signal history (a hole, a restart); the identified lag and the noise are kept.
   void reset();
   /// The mass the noise scale and the gates use (the prior's; never the running estimate).
@@ -149,8 +155,8 @@ class LongitudinalExtractor {
     double rotating_n = 0.0;    ///< RegressionPair::rotating_n
   };
   PairTerms pair_terms(const Record& now, const Record& then, double delta_accel) const;
-  /// The force and plausibility gates of a pair at the identified lag.
-  Extraction finish(const PairTerms& terms, const double* y_by_lag, Extraction out) const;
+  /// The force and plausibility gates of a pair whose differenced force is y.
+  Extraction finish(const PairTerms& terms, double y, Extraction out) const;
   /// m_rot(gear) dv' over the window, N.
   double rotating_n(const Record& now, const Record& then) const;
   void keep_pending(const PairTerms& terms);

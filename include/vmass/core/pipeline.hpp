@@ -152,6 +152,13 @@ class Pipeline {
   void refresh_estimate(const Sample& sample);
   /// The estimate's belief and status from the regressor (inputs as of the last step).
   void refresh_belief();
+  /// The belief over every accepted pair: the Bayes posterior with its open batch (conjugacy
+  /// makes it the posterior a batch boundary would give; the innovation gate keeps the batch's).
+  RegressorState belief_state() const;
+  /// While the driveline lag is unknown: the belief with the longitudinal pairs held for it, at
+  /// the lag the evidence so far points to, and the lag's uncertainty in its interval. False
+  /// (and `*out` untouched) when no held pair passes the gates at that lag.
+  bool provisional_state(RegressorState* out) const;
   /// The regression's state into estimate_, with the model error and the plausibility check.
   void publish_state(const RegressorState& state);
   /// Half the published 95 % interval of a belief: the regression's and the model error's.
