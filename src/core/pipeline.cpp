@@ -247,7 +247,7 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.has_prior = has_prior_;
   s.prior_reason = prior_reason_;
   s.prior = prior_;
-  s.pairs_used = regressor_->state().pairs_used;
+  s.pairs_used = belief_state().pairs_used;
   const Eigen::Vector2d& theta = rls_.theta();
   const Eigen::Matrix2d& p = rls_.covariance();
   s.rls_theta[0] = theta(0);
@@ -256,7 +256,11 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.rls_covariance[1] = p(0, 1);
   s.rls_covariance[2] = p(1, 0);
   s.rls_covariance[3] = p(1, 1);
-  const NigPosterior& nig = bayes_.posterior();
+  // The open batch is saved too (a copy flushed, as published): a restart in the middle of a
+  // drive would otherwise lose up to a batch of pairs. Conjugacy makes it the same belief.
+  BayesEstimator flushed = bayes_;
+  flushed.flush();
+  const NigPosterior& nig = flushed.posterior();
   s.nig_mean[0] = nig.mean(0);
   s.nig_mean[1] = nig.mean(1);
   s.nig_scaled_covariance[0] = nig.scaled_covariance(0, 0);

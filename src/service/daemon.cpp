@@ -311,19 +311,19 @@ void join_threads(Threads& t, Shared& shared) {
   t.publisher.join();
 }
 
-/// The orderly stop after the threads joined: the input report, the pipeline flushed into the
-/// final state save (an open Bayes batch is not lost), the final status. Returns whether saved.
+/// The orderly stop after the threads joined: the input report, the pipeline flushed (the open
+/// Bayes batch closed, as every snapshot saves it) into the final state save, the final status.
+/// Returns whether saved.
 bool save_final_state(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
                       const std::string& path, std::uint64_t fingerprint) {
   // The estimator thread has stopped: its input table and pipeline can be used here.
   const std::string input_problems = source.input_report();
   if (!input_problems.empty()) spdlog::info("inputs: {}", input_problems);
   daemon::SnapshotSlot final_slot = shared.snapshot.read();
-  const long pairs_before_flush = step.pipeline().estimate().pairs_used;
   if (final_slot.valid && step.pipeline().flush()) {
     final_slot.snapshot = step.pipeline().snapshot();
-    spdlog::info("open batch flushed into the final state: pairs used {} -> {}", pairs_before_flush,
-                 step.pipeline().estimate().pairs_used);
+    spdlog::info("open batch flushed into the final state: pairs used {}",
+                 final_slot.snapshot.pairs_used);
   }
   return daemon::save_snapshot(path, final_slot, fingerprint, shared);
 }

@@ -141,6 +141,28 @@ TEST_P(PipelineSnapshotTest, LoadChangedWhileOffRestartsFromTheNewStaticMass) {
               original.estimate().mass_kg + init.payload_factor_mean() * 300.0, 1.0);
 }
 
+// A save in the middle of a drive (the daemon's periodic one) keeps the pairs of the open Bayes
+// batch: the saved belief is the published one, and a restart publishes the same mass.
+TEST_P(PipelineSnapshotTest, AMidDriveSaveKeepsWhatTheEstimatePublished) {
+  const PipelineParams params = test_params(GetParam());
+  Pipeline original(params);
+  drive(original, test::make_drive(test::DriveSpec{}));
+  const long published_pairs = original.estimate().pairs_used;
+  ASSERT_GT(published_pairs, 0);
+  if (params.estimator.type == RegressorType::kBayes) {
+    ASSERT_NE(published_pairs % params.estimator.bayes.batch_size, 0)
+        << "the drive must end with a batch open";
+  }
+  const PipelineSnapshot saved = original.snapshot();
+  EXPECT_EQ(saved.pairs_used, published_pairs);
+
+  Pipeline restored(params);
+  ASSERT_TRUE(restored.restore(saved));
+  EXPECT_EQ(restored.estimate().pairs_used, original.estimate().pairs_used);
+  EXPECT_DOUBLE_EQ(restored.estimate().mass_kg, original.estimate().mass_kg);
+  EXPECT_DOUBLE_EQ(restored.estimate().ci_high_kg, original.estimate().ci_high_kg);
+}
+
 INSTANTIATE_TEST_SUITE_P(BothRegressors, PipelineSnapshotTest, ::testing::Values("bayes", "rls"));
 
 TEST(PipelineRestore, RefusesWhatDoesNotFitAndChangesNothing) {

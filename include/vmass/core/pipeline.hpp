@@ -16,8 +16,8 @@
 // reference standstill deflection and the block counters. After restore() the first completed
 // standstill window is compared with the restored reference deflection exactly like any later
 // window: when the load changed meanwhile, the static initialisation restarts the regressor.
-// The open Bayes batch and the extractors' short histories are not carried over (flush() first
-// to keep the batch).
+// The open Bayes batch is saved closed into the posterior (as the estimate publishes it); the
+// extractors' short histories and the pairs held until the lag is identified are not carried over.
 //
 // Pure: no threads, clocks, files or logging. Not thread-safe. Allocates only in the
 // constructor.
