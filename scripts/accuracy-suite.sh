@@ -16,6 +16,8 @@ seeds=${SEEDS:-3}
 jobs=${JOBS:-$(nproc)}
 
 bash scripts/install-deps.sh
+# The tree the binaries are built from (taken now: the old plots are removed before the report).
+commit="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo +local)"
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$jobs" --target vmass-suite vmass-sim
 bin=build/release/bin
@@ -36,7 +38,7 @@ rm -rf docs/accuracy
   --held-out "$out/held_out.jsonl" --ablation "$out/ablation.jsonl" \
   --series-dir "$out/series" --plots-dir docs/accuracy --out docs/accuracy.md \
   --command "VEHICLES=$vehicles HELD_OUT=$held_out SEEDS=$seeds scripts/accuracy-suite.sh" \
-  --commit "$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo +local)" \
+  --commit "$commit" \
   --population-hash "$("$bin/vmass-suite" --population-hash)" \
   --seconds "$(( $(date +%s) - start ))"
 echo "accuracy-suite: wrote docs/accuracy.md ($(( $(date +%s) - start )) s)"
