@@ -247,7 +247,10 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.has_prior = has_prior_;
   s.prior_reason = prior_reason_;
   s.prior = prior_;
-  s.pairs_used = belief_state().pairs_used;
+  // The open batch is saved too (closed in a copy, as published): a restart in the middle of a
+  // drive would otherwise lose up to a batch of pairs. Conjugacy makes it the same belief.
+  const BayesEstimator bayes = closed_bayes();
+  s.pairs_used = regressor_ == &bayes_ ? bayes.state().pairs_used : rls_.state().pairs_used;
   const Eigen::Vector2d& theta = rls_.theta();
   const Eigen::Matrix2d& p = rls_.covariance();
   s.rls_theta[0] = theta(0);
@@ -256,11 +259,7 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.rls_covariance[1] = p(0, 1);
   s.rls_covariance[2] = p(1, 0);
   s.rls_covariance[3] = p(1, 1);
-  // The open batch is saved too (a copy flushed, as published): a restart in the middle of a
-  // drive would otherwise lose up to a batch of pairs. Conjugacy makes it the same belief.
-  BayesEstimator flushed = bayes_;
-  flushed.flush();
-  const NigPosterior& nig = flushed.posterior();
+  const NigPosterior& nig = bayes.posterior();
   s.nig_mean[0] = nig.mean(0);
   s.nig_mean[1] = nig.mean(1);
   s.nig_scaled_covariance[0] = nig.scaled_covariance(0, 0);
@@ -434,9 +433,13 @@ bool with_held_pairs(Regressor scratch, const LongitudinalExtractor& block, doub
 
 RegressorState Pipeline::belief_state() const {
   if (regressor_ != &bayes_ || bayes_.pending_pairs() == 0) return regressor_->state();
-  BayesEstimator scratch = bayes_;
-  scratch.flush();
-  return scratch.state();
+  return closed_bayes().state();
+}
+
+BayesEstimator Pipeline::closed_bayes() const {
+  BayesEstimator closed = bayes_;
+  if (closed.pending_pairs() > 0) closed.flush();
+  return closed;
 }
 
 bool Pipeline::provisional_state(RegressorState* out) const {

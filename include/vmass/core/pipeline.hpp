@@ -155,6 +155,8 @@ class Pipeline {
   /// The belief over every accepted pair: the Bayes posterior with its open batch (conjugacy
   /// makes it the posterior a batch boundary would give; the innovation gate keeps the batch's).
   RegressorState belief_state() const;
+  /// A copy of the Bayes estimator with its open batch closed into the posterior.
+  BayesEstimator closed_bayes() const;
   /// While the driveline lag is unknown: the belief with the longitudinal pairs held for it, at
   /// the lag the evidence so far points to, and the lag's uncertainty in its interval. False
   /// (and `*out` untouched) when no held pair passes the gates at that lag.
