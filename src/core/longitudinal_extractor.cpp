@@ -87,6 +87,11 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
       settle_ticks_(std::lround(params.settle_s * differencing.tick_rate_hz)) {}
 
 void LongitudinalExtractor::reset() {
+  restart_stretch();
+  pending_count_ = 0;  // pairs of another load
+}
+
+void LongitudinalExtractor::restart_stretch() {
   history_.clear();
   filtered_force_.clear();
   accel_x_filter_.reset();
@@ -96,7 +101,6 @@ void LongitudinalExtractor::reset() {
   brake_filter_.reset();
   has_previous_speed_ = false;
   clean_ticks_ = 0;
-  pending_count_ = 0;  // pairs of a stretch we no longer difference (or of another load)
 }
 
 bool LongitudinalExtractor::braking(const Sample& s) {
@@ -345,7 +349,7 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
   }
   TickInputs in;
   if (!read(s, &in)) {
-    reset();  // a hole in the data: never difference across it
+    restart_stretch();  // a hole in the data: never difference across it
     out.verdict = s.has_all(required_) ? PairVerdict::kNonFinite : PairVerdict::kInputsInvalid;
     return out;
   }

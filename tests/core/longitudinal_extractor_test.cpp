@@ -198,6 +198,32 @@ TEST(LongitudinalExtractor, GearChangeInsideWindowIsRejected) {
   EXPECT_GT(accepted_before, 0);  // the stretch before the shift was usable
 }
 
+// An engine-torque-only car in neutral, or a frame with a NaN: a tick the block cannot use. No
+// window may span it, but the pairs already held for the lag were complete before it; dropping
+// them lost the provisional estimate at every gear shift of such a car.
+TEST(LongitudinalExtractor, HeldPairsOutliveAHoleInTheData) {
+  const VehicleParams v = testing::test_vehicle();
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  LongitudinalDrive drive;
+  auto samples = testing::longitudinal_samples(drive, v, 0.0, 3.0, 15.0, 0.01);
+  constexpr std::size_t kHole = 250;
+  samples[kHole].set(Input::kWheelTorque, std::nan(""));
+  std::size_t held_before_hole = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Extraction e = ex.step(samples[i]);
+    if (i + 1 == kHole) held_before_hole = ex.pending_count();
+    if (i == kHole) {
+      EXPECT_EQ(e.verdict, PairVerdict::kNonFinite);
+      EXPECT_EQ(ex.pending_count(), held_before_hole);
+    }
+  }
+  ASSERT_FALSE(ex.lag().identified());  // every pair so far is held
+  EXPECT_GT(held_before_hole, 0u);
+  EXPECT_GE(ex.pending_count(), held_before_hole);
+  ex.reset();  // a restart (a load that may have changed) does drop them
+  EXPECT_EQ(ex.pending_count(), 0u);
+}
+
 TEST(LongitudinalExtractor, NeverDifferencesAcrossInvalidOrNonFiniteInputs) {
   const VehicleParams v = testing::test_vehicle();
   LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});

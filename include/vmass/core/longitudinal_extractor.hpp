@@ -96,7 +96,9 @@ class LongitudinalExtractor {
   /// provisional estimate only: the pair that enters the belief is the one pop_released() gives
   /// once the lag is identified.
   Extraction provisional(std::size_t i, double lag_s) const;
-  /// Forget the signal history (a hole, a restart); the identified lag and the noise are kept.
+  /// Forget the signal history and the held pairs (a restart: the load may have changed); the
+  /// identified lag and the noise are kept. A hole in the data (a tick step() cannot use)
+  /// restarts only the history: the held pairs were complete before it.
   void reset();
   /// The mass the noise scale and the gates use (the prior's; never the running estimate).
   void set_reference_mass(double mass_kg) { reference_mass_kg_ = mass_kg; }
@@ -131,6 +133,8 @@ class LongitudinalExtractor {
     bool clean = false;  ///< no brake, valid gear, fast enough
   };
 
+  /// The filters and the differencing start again (no window spans a hole); held pairs stay.
+  void restart_stretch();
   bool read(const Sample& s, TickInputs* in);
   /// C_wheel from the wheel torque, or from the engine torque through the gear; NaN if neither.
   double wheel_torque_nm(const Sample& s) const;
