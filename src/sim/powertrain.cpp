@@ -240,15 +240,24 @@ double Powertrain::wheel_torque_nm() const {
   return t + creep_nm();
 }
 
-double Powertrain::reported_engine_torque_nm() const {
+double Powertrain::reported_pm_torque_nm() const {
   return overrun_ ? pm_torque_nm_ * (1.0 + p_.drag_report_error) : pm_torque_nm_;
+}
+
+double Powertrain::reported_engine_torque_nm() const {
+  // A clutch shift's torque reduction is the engine's own (the driver lifts off, or the gearbox
+  // asks the engine for less), so its ECU reports it; a converter or double-clutch gearbox hands
+  // the torque over in its clutches, and the engine's torque does not show the dip.
+  const bool engine_reduces =
+      p_.transmission == Transmission::kManual || p_.transmission == Transmission::kAutomatedManual;
+  return reported_pm_torque_nm() * (engine_reduces ? torque_scale() : 1.0);
 }
 
 double Powertrain::reported_wheel_torque_nm() const {
   const int g = engaged_gear();
   if (g == 0) return 0.0;
   const double tc_ecu = 1.0 + (tc_ratio_ - 1.0) * (1.0 + p_.tc_model_error);
-  return reported_engine_torque_nm() * torque_scale() * tc_ecu * ratio(g) * p_.efficiency +
+  return reported_pm_torque_nm() * torque_scale() * tc_ecu * ratio(g) * p_.efficiency +
          creep_nm() * (1.0 + p_.tc_model_error);
 }
 

@@ -231,6 +231,27 @@ TEST(SimRealism, TorqueConverterMultipliesAtStallAndLocksUp) {
   EXPECT_DOUBLE_EQ(cruising.reported_wheel_torque_nm(), cruising.wheel_torque_nm());
 }
 
+// A clutch gearbox's shift is a torque reduction of the engine itself (the driver lifts off, or
+// the gearbox asks the engine for less), so a car that reports only its engine torque shows it;
+// a converter automatic hands the torque over in its clutches, and the engine's report does not.
+TEST(SimRealism, AClutchShiftIsInTheEnginesReportAConverterShiftIsNot) {
+  auto halfway_through_the_ramp_down = [](Transmission t) {
+    PowertrainParams p;
+    p.transmission = t;
+    p.shift_min_scale = 0.4;
+    Powertrain pt(p, 0.31);
+    pt.reset(0.0, 0.0);
+    // 7.5 m/s in first gear turns the engine past its upshift speed: the shift starts, and
+    // half its 0.1 s ramp down later the torque at the wheels is down to 0.7 of the engine's.
+    for (int k = 0; k <= 50; ++k) pt.step(k * 0.001, 0.001, 500.0, 7.5);
+    const double through_first = p.gear_ratios[0] * p.final_drive_ratio * p.efficiency;
+    return pt.wheel_torque_nm() / (pt.reported_engine_torque_nm() * through_first);
+  };
+  EXPECT_NEAR(halfway_through_the_ramp_down(Transmission::kAutomatedManual), 1.0, 1e-9);
+  EXPECT_NEAR(halfway_through_the_ramp_down(Transmission::kManual), 1.0, 1e-9);
+  EXPECT_NEAR(halfway_through_the_ramp_down(Transmission::kAutomatic), 0.7, 0.01);
+}
+
 TEST(SimRealism, EngineDragIsReportedWithItsError) {
   PowertrainParams p;
   p.drag_torque_nm = 20.0;

@@ -21,7 +21,10 @@
 // The REPORTED wheel torque is the ECU's estimate: T_pm * s * TR_ecu * i_g * i_f * eta + creep
 // (times report_scale), where TR_ecu = 1 + (TR - 1)(1 + tc_model_error) and the drag part of T_pm
 // is reported as T_drag (1 + drag_report_error): the ECU does not see the accessory load. The
-// reported ENGINE torque (cars that only publish engine torque and gear) is T_pm (same errors).
+// reported ENGINE torque (cars that only publish engine torque and gear) is T_pm (same errors)
+// times s(t) with a clutch gearbox (manual, automated manual), whose shift is a torque reduction
+// of the engine itself; with a converter or double clutch the dip is in the gearbox's clutches,
+// and the engine's report stays T_pm.
 //
 // Not thread-safe (it has state); no allocation after construction.
 #pragma once
@@ -128,7 +131,9 @@ class Powertrain {
   double ratio(int gear) const;  ///< i_g * i_f
   double pm_speed_radps(int gear, double speed_mps) const;
   double torque_scale() const;  ///< s(t) of the shift
-  int engaged_gear() const;     ///< gear the clutch connects, 0 when open
+  /// T_pm as the ECU reports it (its drag error in overrun), before the shift's scale.
+  double reported_pm_torque_nm() const;
+  int engaged_gear() const;  ///< gear the clutch connects, 0 when open
   double drag_torque_nm(double pm_speed_radps) const;
   void update_shift(double dt_s, double speed_mps);
   void update_converter(double speed_mps);
