@@ -29,7 +29,9 @@ constexpr std::array<EffectInfo, kEffectCount> kEffects = {{
     {"body_pitch_roll", "body pitch and roll per g tilt the accelerometer"},
     {"wind", "mean head and cross wind with gusts"},
     {"speed_resistance", "rolling resistance growing with v^2, driveline viscous losses"},
-    {"wheel_speed", "speed from the wheels: slip, radius error, quantisation, cluster display"},
+    {"wheel_speed",
+     "speed from the wheels: slip (the driveline turns with it), radius error, quantisation, "
+     "cluster display"},
     {"brake_sensor", "brake pressure sensor offset"},
     {"brake_fade", "brake gain falls with disc temperature"},
     {"road_roughness", "rough surface and speed bumps"},

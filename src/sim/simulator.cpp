@@ -19,6 +19,12 @@ constexpr double kDisplayMinSpeedMps = 0.3;
 constexpr double kBrakeLightPressurePa = 2.0e4;  // about the pedal free travel
 
 // One run of simulate(): the models, their states and the stepping (see simulator.hpp).
+// Quasi-static longitudinal slip of each axle's tyres (0 without the wheel_speed effect).
+struct AxleSlips {
+  double front = 0.0;
+  double rear = 0.0;
+};
+
 class SimulationRun {
  public:
   SimulationRun(const Scenario& scenario, const SimulationOptions& options, SimulationResult* out)
@@ -44,7 +50,9 @@ class SimulationRun {
   void start();
   void advance(double t_s, double dt_s);
   EcuSignals ecu_signals(TimeUs t_us, const VehicleOutputs& o);
+  AxleSlips axle_slips(const VehicleOutputs& o) const;
   double speed_signal(const VehicleOutputs& o) const;
+  void update_driven_slip(const VehicleOutputs& o, double dt_s);
   double deflection_reading() const;
   void record_tick(TimeUs t_us, const VehicleOutputs& o, const EcuSignals& ecu);
 
@@ -101,6 +109,7 @@ void SimulationRun::start() {
   in_.wind_head_mps = fx_.has(Effect::kWind) ? wind_.head_mps() : 0.0;
   in_.wind_cross_mps = fx_.has(Effect::kWind) ? wind_.cross_mps() : 0.0;
   brake_temperature_c_ = vp_.brakes.ambient_c;
+  update_driven_slip(model_.evaluate(state_, in_), 0.0);  // the starting slip, without a rate
 
   const SuspensionParams& sp = vp_.rear_right_suspension;
   const StaticLoads empty = static_loads(vp_, vp_.empty);
@@ -141,21 +150,38 @@ void SimulationRun::advance(double t_s, double dt_s) {
   model_.step(state_, in_, dt_s);
 }
 
+double front_drive_share(const TrueVehicle& v) {
+  if (v.driven_axle == DrivenAxle::kFront) return 1.0;
+  return v.driven_axle == DrivenAxle::kRear ? 0.0 : 0.5;
+}
+
+AxleSlips SimulationRun::axle_slips(const VehicleOutputs& o) const {
+  if (!fx_.has(Effect::kWheelSpeed) || state_.stopped) return {};
+  const double front_drive = front_drive_share(vp_);
+  const double fx_front = front_drive * o.drive_force_n - vp_.brake_front_share * o.brake_force_n;
+  const double fx_rear =
+      (1.0 - front_drive) * o.drive_force_n - (1.0 - vp_.brake_front_share) * o.brake_force_n;
+  const double c = vp_.wheel_speed.slip_stiffness;
+  return {fx_front / (c * std::max(o.front_axle_load_n, 1.0)),
+          fx_rear / (c * std::max(o.rear_axle_load_n, 1.0))};
+}
+
 // Mean longitudinal slip of the four wheels times the speed, as the ESC averages them.
 double SimulationRun::speed_signal(const VehicleOutputs& o) const {
   const double v = state_.vx_mps;
   if (!fx_.has(Effect::kWheelSpeed) || state_.stopped) return v;
-  const WheelSpeedParams& w = vp_.wheel_speed;
-  const double front_drive = vp_.driven_axle == DrivenAxle::kFront
-                                 ? 1.0
-                                 : (vp_.driven_axle == DrivenAxle::kRear ? 0.0 : 0.5);
-  const double fx_front = front_drive * o.drive_force_n - vp_.brake_front_share * o.brake_force_n;
-  const double fx_rear =
-      (1.0 - front_drive) * o.drive_force_n - (1.0 - vp_.brake_front_share) * o.brake_force_n;
-  const double c = w.slip_stiffness;
-  const double kappa_front = fx_front / (c * std::max(o.front_axle_load_n, 1.0));
-  const double kappa_rear = fx_rear / (c * std::max(o.rear_axle_load_n, 1.0));
-  return v * (1.0 + w.radius_error_fraction) * (1.0 + 0.5 * (kappa_front + kappa_rear));
+  const AxleSlips k = axle_slips(o);
+  return v * (1.0 + vp_.wheel_speed.radius_error_fraction) * (1.0 + 0.5 * (k.front + k.rear));
+}
+
+// The driveline turns with the driven wheels: their slip, and its rate over the last step, go
+// into the rotating parts' inertia (VehicleModel).
+void SimulationRun::update_driven_slip(const VehicleOutputs& o, double dt_s) {
+  const AxleSlips k = axle_slips(o);
+  const double front_drive = front_drive_share(vp_);
+  const double slip = front_drive * k.front + (1.0 - front_drive) * k.rear;
+  in_.driven_slip_rate_per_s = dt_s > 0.0 ? (slip - in_.driven_slip) / dt_s : 0.0;
+  in_.driven_slip = slip;
 }
 
 double SimulationRun::deflection_reading() const {
@@ -230,6 +256,8 @@ void SimulationRun::record_tick(TimeUs t_us, const VehicleOutputs& o, const EcuS
   r.drag_force_n = o.drag_force_n;
   r.rolling_resistance_n = o.rolling_resistance_n;
   r.rotating_mass_kg = in_.rotating_mass_kg;
+  r.driven_slip = in_.driven_slip;
+  r.driven_slip_rate_per_s = in_.driven_slip_rate_per_s;
   r.gear = pt_.gear_signal();
   r.steering_wheel_angle_rad = cmd_.steering_wheel_angle_rad;
   r.road_wheel_angle_rad = in_.road_wheel_angle_rad;
@@ -289,6 +317,7 @@ void SimulationRun::run() {
         const EcuSignals ecu = ecu_signals(from_seconds(t), o);
         if (record_trace_) res_.ecu_trace.push_back(ecu);
         if (j == 0) record_tick(from_seconds(t_tick), o, ecu);
+        update_driven_slip(o, fine_ ? dt : 1.0 / tick_hz);  // for the steps that follow
       }
       if (k + 1 == ticks) break;
       advance(t, dt);

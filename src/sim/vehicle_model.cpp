@@ -184,7 +184,8 @@ std::pair<double, double> moving_derivatives(const TrueVehicle& p, const Road& r
                          M * g * std::cos(o.grade_rad) * std::sin(o.bank_rad);
   const double moment_z = lf * (axle.front * sd + fyf * cd) - lr * fyr;
 
-  d[kVx] = (force_x + M * r * vy) / (M + in.rotating_mass_kg);
+  d[kVx] = (force_x + M * r * vy - in.rotating_mass_kg * vx * in.driven_slip_rate_per_s) /
+           (M + in.rotating_mass_kg * (1.0 + in.driven_slip));
   d[kVy] = force_y / M - r * vx;
   d[kR] = moment_z / m.yaw_inertia_kgm2;
   d[kX] = vx * std::cos(x[kYaw]) - vy * std::sin(x[kYaw]);

@@ -5,6 +5,7 @@
 // drive with every effect on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -291,8 +292,11 @@ TEST(SimRealism, ForceAndEnergyBalanceHoldWithEveryEffectOn) {
     if (t.stopped || n.stopped || t.speed_mps < 0.5) continue;
     const double m = t.mass_kg;
     const double grade_n = m * kG * std::sin(t.grade_rad);
-    EXPECT_NEAR((m + t.rotating_mass_kg) * t.long_accel_mps2,
-                non_gravity_force(t, radius) - grade_n, 1e-6 * m * kG)
+    // The driveline turns with the driven wheels, slip included (VehicleModel).
+    const double rotating_n = t.rotating_mass_kg * (t.long_accel_mps2 * (1.0 + t.driven_slip) +
+                                                    t.speed_mps * t.driven_slip_rate_per_s);
+    EXPECT_NEAR(m * t.long_accel_mps2 + rotating_n, non_gravity_force(t, radius) - grade_n,
+                1e-6 * m * kG)
         << k;
     ++checked;
     if (t.rotating_mass_kg != n.rotating_mass_kg) continue;  // a shift: m_rot jumps
@@ -307,6 +311,32 @@ TEST(SimRealism, ForceAndEnergyBalanceHoldWithEveryEffectOn) {
   }
   EXPECT_GT(checked, 10000);
   EXPECT_NEAR(work_j, energy_j, 0.005 * scale_j);
+}
+
+TEST(SimRealism, TheDrivelineTurnsWithTheDrivenWheelsSlipIncluded) {
+  // Given a truck's urban drive with only the wheel speed effect (the tyres' slip)
+  const DrawnVehicle v = draw_vehicle(VehicleClass::kHeavyTruck, 7);
+  PopulationRun run;
+  const Realism slip = Realism::only(Effect::kWheelSpeed);
+  ASSERT_EQ(make_population_run(v, "urban", 1, slip, &run), "");
+  SimulationOptions o;
+  o.realism = slip;
+  o.seed = 1;
+  const SimulationResult r = test::run(run.physics, o);
+  double max_slip = 0.0;
+  double max_slip_rate_n = 0.0;  // what the slip's rate takes from the force, N
+  for (const TruthRow& t : r.truth) {
+    if (t.stopped) continue;
+    max_slip = std::max(max_slip, t.driven_slip);
+    max_slip_rate_n = std::max(
+        max_slip_rate_n, std::abs(t.rotating_mass_kg * t.speed_mps * t.driven_slip_rate_per_s));
+  }
+  // Then the driven wheels slip under traction (slip stiffness 8-12), below a tyre's peak (~0.1)
+  EXPECT_GT(max_slip, 0.002);
+  EXPECT_LT(max_slip, 0.1);
+  // And the driveline's inertia takes up the slip's rate: m_rot v dk/dt reaches more than 1 % of
+  // the truck's weight at some torque change (the force balance is checked with every effect on)
+  EXPECT_GT(max_slip_rate_n, 0.01 * r.truth.front().mass_kg * kG);
 }
 
 }  // namespace

@@ -73,7 +73,9 @@ struct TruthRow {
   double drag_force_n = 0.0;
   double rolling_resistance_n = 0.0;
   double rotating_mass_kg = 0.0;  ///< m_rot in effect
-  int gear = 0;                   ///< engaged gear, 0 while the clutch is open
+  double driven_slip = 0.0;       ///< the driven wheels' slip: the driveline turns at v (1 + it)
+  double driven_slip_rate_per_s = 0.0;
+  int gear = 0;  ///< engaged gear, 0 while the clutch is open
   double steering_wheel_angle_rad = 0.0;
   double road_wheel_angle_rad = 0.0;
   double bank_rad = 0.0;

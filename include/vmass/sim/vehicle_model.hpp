@@ -6,7 +6,9 @@
 // yaw positive to the left), distance s, relaxed slip angles alpha_f, alpha_r, lagged specific
 // forces (load transfer), rear-right suspension compression z and its rate.
 //
-//   (M + m_rot) dv_x/dt = F_X + M r v_y          (rotating parts take m_rot dv_x/dt of the force)
+//   (M + m_rot (1 + k)) dv_x/dt = F_X + M r v_y - m_rot v_x dk/dt
+//                        (the rotating parts turn with the driven wheels, at v_x (1 + k), k their
+//                        longitudinal slip: VehicleInputs::driven_slip, 0 without wheel_speed)
 //   M (dv_y/dt + r v_x)  = F_Y
 //   I_z dr/dt            = l_f (F_xf sin delta + F_yf cos delta) - l_r F_yr
 //   F_X = F_xf cos delta - F_yf sin delta + F_xr - F_drag - M g sin theta
@@ -35,8 +37,9 @@
 //   road_roughness    speed-bump pulses on each axle (Road::bump_deceleration_mps2)
 // VehicleInputs::brake_gain_scale carries brake fade; the hub torque comes from the Driveline.
 //
-// Not modelled: combined slip, steering compliance, wheel slip (the wheel speed is v_x; the
-// sensor stage adds slip to the speed signal).
+// Not modelled: combined slip, steering compliance, the wheels' own spin dynamics (the wheel
+// speed is v_x; the simulator derives a quasi-static longitudinal slip from the axle forces for
+// the speed signal and for the driveline's inertia above).
 //
 // Const member functions are thread-safe; VehicleState is a value owned by the caller.
 #pragma once
@@ -70,6 +73,10 @@ struct VehicleInputs {
   MassProperties mass;
   double wheel_torque_nm = 0.0;   ///< torque at the hubs (Driveline::hub_torque_nm)
   double rotating_mass_kg = 0.0;  ///< m_rot (Powertrain::rotating_mass_kg)
+  /// The driven wheels' longitudinal slip kappa and its rate: the rotating parts turn with the
+  /// driven wheels, at v (1 + kappa), so they take up m_rot (dv/dt (1 + kappa) + v dkappa/dt).
+  double driven_slip = 0.0;
+  double driven_slip_rate_per_s = 0.0;
   double brake_pressure_pa = 0.0;
   double road_wheel_angle_rad = 0.0;  ///< delta, positive steering left
   double brake_gain_scale = 1.0;      ///< brake fade (1: none)
