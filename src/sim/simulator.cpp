@@ -18,13 +18,13 @@ namespace {
 constexpr double kDisplayMinSpeedMps = 0.3;
 constexpr double kBrakeLightPressurePa = 2.0e4;  // about the pedal free travel
 
-// One run of simulate(): the models, their states and the stepping (see simulator.hpp).
 // Quasi-static longitudinal slip of each axle's tyres (0 without the wheel_speed effect).
 struct AxleSlips {
   double front = 0.0;
   double rear = 0.0;
 };
 
+// One run of simulate(): the models, their states and the stepping (see simulator.hpp).
 class SimulationRun {
  public:
   SimulationRun(const Scenario& scenario, const SimulationOptions& options, SimulationResult* out)
