@@ -150,14 +150,9 @@ void SimulationRun::advance(double t_s, double dt_s) {
   model_.step(state_, in_, dt_s);
 }
 
-double front_drive_share(const TrueVehicle& v) {
-  if (v.driven_axle == DrivenAxle::kFront) return 1.0;
-  return v.driven_axle == DrivenAxle::kRear ? 0.0 : 0.5;
-}
-
 AxleSlips SimulationRun::axle_slips(const VehicleOutputs& o) const {
   if (!fx_.has(Effect::kWheelSpeed) || state_.stopped) return {};
-  const double front_drive = front_drive_share(vp_);
+  const double front_drive = front_drive_share(vp_.driven_axle);
   const double fx_front = front_drive * o.drive_force_n - vp_.brake_front_share * o.brake_force_n;
   const double fx_rear =
       (1.0 - front_drive) * o.drive_force_n - (1.0 - vp_.brake_front_share) * o.brake_force_n;
@@ -178,7 +173,7 @@ double SimulationRun::speed_signal(const VehicleOutputs& o) const {
 // into the rotating parts' inertia (VehicleModel).
 void SimulationRun::update_driven_slip(const VehicleOutputs& o, double dt_s) {
   const AxleSlips k = axle_slips(o);
-  const double front_drive = front_drive_share(vp_);
+  const double front_drive = front_drive_share(vp_.driven_axle);
   const double slip = front_drive * k.front + (1.0 - front_drive) * k.rear;
   in_.driven_slip_rate_per_s = dt_s > 0.0 ? (slip - in_.driven_slip) / dt_s : 0.0;
   in_.driven_slip = slip;

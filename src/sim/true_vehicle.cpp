@@ -48,6 +48,11 @@ std::string TrueVehicle::validate() const {
   return "";
 }
 
+double front_drive_share(DrivenAxle a) {
+  if (a == DrivenAxle::kFront) return 1.0;
+  return a == DrivenAxle::kRear ? 0.0 : 0.5;
+}
+
 std::string_view driven_axle_name(DrivenAxle a) {
   switch (a) {
     case DrivenAxle::kFront:

@@ -136,12 +136,11 @@ AxleForces longitudinal_forces(const TrueVehicle& p, const Road& road, const Vec
                               road.bump_deceleration_mps2(x[kDist] - lr, vx));
   }
   const double drive = o->drive_force_n - viscous;
-  const double front_drive_share =
-      p.driven_axle == DrivenAxle::kFront ? 1.0 : (p.driven_axle == DrivenAxle::kRear ? 0.0 : 0.5);
+  const double front_share = front_drive_share(p.driven_axle);
   AxleForces f;
-  f.front = front_drive_share * drive - p.brake_front_share * (brake + esc) -
+  f.front = front_share * drive - p.brake_front_share * (brake + esc) -
             f_roll * w.front_axle * roll_sign - 0.5 * bump;
-  f.rear = (1.0 - front_drive_share) * drive - (1.0 - p.brake_front_share) * (brake + esc) -
+  f.rear = (1.0 - front_share) * drive - (1.0 - p.brake_front_share) * (brake + esc) -
            f_roll * w.rear_axle * roll_sign - 0.5 * bump;
   o->brake_force_n = std::abs(brake);
   o->esc_brake_force_n = esc;

@@ -24,6 +24,8 @@ namespace vmass::sim {
 
 enum class DrivenAxle : std::uint8_t { kFront = 0, kRear, kAll };
 std::string_view driven_axle_name(DrivenAxle a);
+/// The share of the drive force on the front axle: 1, 0, or 0.5 on an all-wheel drive.
+double front_drive_share(DrivenAxle a);
 
 /// Brake pressure sensor and disc temperature (brake_sensor, brake_fade).
 ///   K_eff = K (1 - fade_max (clamp((T - T_start) / (T_full - T_start), 0, 1)))
