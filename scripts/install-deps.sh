@@ -18,6 +18,8 @@ packages=(
   python3 python3-matplotlib python3-venv python3-yaml
   # man pages (help2man from --help) and the .deb (CPack runs dpkg-shlibdeps, dpkg-deb)
   help2man dpkg-dev
+  # compiler cache: a fresh clone compiles only what no earlier build compiled (CMakeLists.txt)
+  ccache
   # network namespaces and SocketCAN user space for integration tests
   iproute2 can-utils util-linux
 )

@@ -5,6 +5,7 @@
 #include <functional>
 #include <utility>
 
+#include "seats.hpp"
 #include "vmass/sim/random_stream.hpp"
 
 namespace vmass::sim {
@@ -113,25 +114,6 @@ class ProfileBuilder {
 };
 
 // --- payload -------------------------------------------------------------------------------
-
-struct Seats {
-  double front_x, rear_x, boot_x, cargo_x0, cargo_x1, seat_z, cargo_z;
-  bool cargo;  ///< van, pickup, truck: a cargo area instead of seats and a boot
-};
-
-Seats seats_of(const DrawnVehicle& d) {
-  const double l = d.vehicle.wheelbase_m;
-  switch (d.vehicle_class) {
-    case VehicleClass::kVan:
-      return {0.10 * l, 0.10 * l, l + 0.4, 0.45 * l, l + 0.6, 0.9, 0.9, true};
-    case VehicleClass::kPickup:
-      return {0.35 * l, 0.60 * l, l + 0.4, 0.80 * l, l + 0.9, 0.9, 1.1, true};
-    case VehicleClass::kHeavyTruck:
-      return {0.02 * l, 0.02 * l, l, 0.25 * l, l + 1.5, 1.8, 1.9, true};
-    default:
-      return {0.45 * l, 0.78 * l, l + 0.45, 0.0, 0.0, 0.55, 0.75, false};
-  }
-}
 
 enum class PayloadKind : std::uint8_t { kTypical, kHeavyRear, kLoadChange };
 
@@ -539,14 +521,16 @@ std::string population_scenario_description(std::string_view name) {
 }
 
 std::string make_population_run(const DrawnVehicle& vehicle, std::string_view scenario,
-                                std::uint64_t seed, Realism realism, PopulationRun* out) {
+                                std::uint64_t seed, Realism realism, PopulationRun* out,
+                                const std::vector<LoadItem>* payload) {
   const ScenarioEntry* entry = nullptr;
   for (const ScenarioEntry& e : registry()) {
     if (scenario == e.name) entry = &e;
   }
   if (entry == nullptr) return "unknown population scenario '" + std::string(scenario) + "'";
-  PopulationRun& run = *out;
-  run = PopulationRun{};
+  // Built in a local and moved out: assigning a temporary to *out made GCC 12 at -O3 warn of
+  // its vectors as maybe uninitialised (a false positive).
+  PopulationRun run;
   run.scenario = entry->name;
   run.realism = realism;
   run.bus.realism = realism;
@@ -564,6 +548,7 @@ std::string make_population_run(const DrawnVehicle& vehicle, std::string_view sc
   ProfileBuilder builder(vehicle, style_of(vehicle));
   Built built;
   entry->build(vehicle, rng, builder, run, built);
+  if (payload != nullptr) built.payload = *payload;
   place_items(built.payload, s.vehicle, realism);
   for (LoadChange& c : built.changes) place_items(c.items, s.vehicle, realism);
   s.initial_payload = built.payload;
@@ -576,7 +561,9 @@ std::string make_population_run(const DrawnVehicle& vehicle, std::string_view sc
     s.road.roughness = PiecewiseLinear(0.0);
     s.road.bumps.clear();
   }
-  return s.validate();
+  std::string invalid = s.validate();
+  *out = std::move(run);
+  return invalid;
 }
 
 }  // namespace vmass::sim

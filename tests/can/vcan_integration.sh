@@ -1,15 +1,16 @@
 #!/bin/sh
 # vcan integration test of the SocketCAN reader; runs inside tests/can/vcan_vm.sh (real vcan0).
 #
-#   vcan_integration.sh VMASS_CAN
+#   vcan_integration.sh VMASS_CAN [IFACE]      (IFACE: default vcan0)
 #
-# Starts `vmass-can dump --can vcan0` (SocketCanReader), sends classic, extended, remote and
+# Starts `vmass-can dump --can IFACE` (SocketCanReader), sends classic, extended, remote and
 # CAN FD frames with cansend and canplayer, takes vcan0 down and up mid-stream (ENETDOWN: the
 # reader keeps its socket), then deletes and re-creates vcan0 (ENODEV: the reader re-creates its
 # socket by name), and checks that every frame arrived, in order, exactly as candump -L prints
 # the same frames (same kernel timestamps, same text). Writes only to $VCAN_VM_OUT.
 set -u
 tool=$1
+iface=${2:-vcan0}
 out=${VCAN_VM_OUT:?run me through vcan_vm.sh}
 fail() { echo "vcan_integration: FAIL: $*" >&2; echo "--- dump stderr"; cat "$out/dump.err" >&2; exit 1; }
 wait_for() {  # wait_for PATTERN FILE SECONDS
@@ -23,43 +24,43 @@ wait_for() {  # wait_for PATTERN FILE SECONDS
 
 t0=$(date +%s.%N)
 # CAN FD needs the FD MTU; vcan takes a new MTU only while down.
-ip link set vcan0 down && ip link set vcan0 mtu 72 && ip link set vcan0 up || fail "vcan0 setup"
+ip link set $iface down && ip link set $iface mtu 72 && ip link set $iface up || fail "$iface setup"
 
-"$tool" dump --can vcan0 --count 9 --idle-timeout 30 > "$out/got.log" 2> "$out/dump.err" &
+"$tool" dump --can $iface --count 9 --idle-timeout 30 > "$out/got.log" 2> "$out/dump.err" &
 dump_pid=$!
-candump -L vcan0 > "$out/candump.log" 2> "$out/candump.err" &
+candump -L $iface > "$out/candump.log" 2> "$out/candump.err" &
 candump_pid=$!
-wait_for "listening on vcan0" "$out/dump.err" 10 || fail "vmass-can dump did not start"
+wait_for "listening on $iface" "$out/dump.err" 10 || fail "vmass-can dump did not start"
 sleep 0.5
 
 fd_data=$(i=0; while [ $i -lt 64 ]; do printf '%02X' $i; i=$((i + 1)); done)
-cansend vcan0 123#DEADBEEF || fail "cansend classic"
-cansend vcan0 1ABCDEF0#0102 || fail "cansend extended"
-cansend vcan0 321#R || fail "cansend remote"
-cansend vcan0 "7FF##1$fd_data" || fail "cansend FD"
+cansend $iface 123#DEADBEEF || fail "cansend classic"
+cansend $iface 1ABCDEF0#0102 || fail "cansend extended"
+cansend $iface 321#R || fail "cansend remote"
+cansend $iface "7FF##1$fd_data" || fail "cansend FD"
 cat > "$out/replay.log" <<EOF
 (1700000000.000000) can0 100#0011223344556677
 (1700000000.001000) can0 18DAF110#02
 (1700000000.002000) can0 200##0000102030405060708090A0B
 EOF
-canplayer -I "$out/replay.log" vcan0=can0 || fail "canplayer"
+canplayer -I "$out/replay.log" $iface=can0 || fail "canplayer"
 
 # Interface down and up again: the reader must keep its socket and go on.
-ip link set vcan0 down
+ip link set $iface down
 wait_for "interface down" "$out/dump.err" 10 || fail "reader did not see the interface go down"
-cansend vcan0 111#01 2>/dev/null && fail "cansend worked on a down interface"
-ip link set vcan0 up
+cansend $iface 111#01 2>/dev/null && fail "cansend worked on a down interface"
+ip link set $iface up
 sleep 0.2
-cansend vcan0 456#CAFE || fail "cansend after up"
+cansend $iface 456#CAFE || fail "cansend after up"
 sleep 0.3
 kill "$candump_pid" 2>/dev/null; wait "$candump_pid" 2>/dev/null
 
 # Interface deleted and re-created: the reader must re-create its socket by name.
-ip link del vcan0
+ip link del $iface
 wait_for "interface gone" "$out/dump.err" 10 || fail "reader did not see the interface vanish"
-ip link add dev vcan0 type vcan && ip link set vcan0 up
+ip link add dev $iface type vcan && ip link set $iface up
 wait_for "socket re-created" "$out/dump.err" 10 || fail "reader did not re-create its socket"
-cansend vcan0 789#01 || fail "cansend after re-create"
+cansend $iface 789#01 || fail "cansend after re-create"
 
 wait "$dump_pid"
 status=$?
@@ -73,15 +74,15 @@ echo "--- vmass-can dump stderr:"; cat "$out/dump.err"
 cut -d' ' -f2- "$out/got.log" | sed -e 's/##4/##0/; s/##5/##1/; s/##6/##2/; s/##7/##3/' \
   > "$out/got.frames"
 cat > "$out/want.frames" <<EOF
-vcan0 123#DEADBEEF
-vcan0 1ABCDEF0#0102
-vcan0 321#R
-vcan0 7FF##1$fd_data
-vcan0 100#0011223344556677
-vcan0 18DAF110#02
-vcan0 200##0000102030405060708090A0B
-vcan0 456#CAFE
-vcan0 789#01
+$iface 123#DEADBEEF
+$iface 1ABCDEF0#0102
+$iface 321#R
+$iface 7FF##1$fd_data
+$iface 100#0011223344556677
+$iface 18DAF110#02
+$iface 200##0000102030405060708090A0B
+$iface 456#CAFE
+$iface 789#01
 EOF
 diff "$out/want.frames" "$out/got.frames" || fail "frames differ"
 

@@ -1,6 +1,10 @@
 #!/bin/bash
-# vmassd on a real SocketCAN interface (vcan0, inside tests/can/vcan_vm.sh's qemu VM), in two
-# phases within one boot. The LCM output goes to LCM log files checked here afterwards with the
+# Every check that needs a real SocketCAN stack, in one boot of tests/can/vcan_vm.sh's qemu VM
+# (a boot costs 15-40 s of emulation): vmassd's two phases and the CAN layer's reader test
+# (tests/can/vcan_integration.sh: classic, extended, remote and FD frames through vmass-can's
+# SocketCAN reader, interface down/up and delete/re-create, compared with candump -L), each on
+# its own interface and at the same time (phase 1 on vcan1, the reader test on vcan2, phase 2's
+# drive on vcan0). The LCM output goes to LCM log files checked here afterwards with the
 # generated Python types.
 #
 # 1. Counters and loss (Prius DBC, cansend): frames are received with kernel time stamps and
@@ -38,19 +42,21 @@
 # SIGTERM stops vmassd with exit 0 in both phases.
 #
 #   vmassd_vcan_test.sh VCAN_VM VMASSD PRIUS_DBC PYTHON_TYPES_DIR VMASS_SIM VMASS_REPLAY
-#   vmassd_vcan_test.sh --inside VMASSD PRIUS_DBC                      (inside the VM)
+#                       VMASS_CAN READER_TEST
+#   vmassd_vcan_test.sh --inside VMASSD PRIUS_DBC VMASS_CAN READER_TEST     (inside the VM)
 set -euo pipefail
 
 if [ "${1:-}" = "--inside" ]; then
-  vmassd=$2 dbc=$3 out=$VCAN_VM_OUT
+  vmassd=$2 dbc=$3 vmass_can=$4 reader_test=$5 out=$VCAN_VM_OUT
   # vmassd logs "vmassd running" once its socket is open and its threads run (start-up in the
   # emulated VM, loading libraries over 9p, can take seconds).
   ready() {
     for _ in $(seq 300); do grep -q "vmassd running" "$1" 2>/dev/null && return 0; sleep 0.1; done
     echo "vmassd did not start:"; cat "$1"; return 1
   }
-  # ------------------------------------------------------------------ phase 1
-  cat > "$out/vmassd.yaml" <<YAML
+  # ------------------------------------------------------------------ phase 1 (vcan1)
+  phase1() {
+    cat > "$out/vmassd.yaml" <<YAML
 vehicle:
   empty_mass_kg: 1500
   wheelbase_m: 2.7
@@ -69,31 +75,37 @@ can:
 lcm:
   status_period_s: 0.25
 daemon:
-  can_interface: vcan0
+  can_interface: vcan1
 YAML
-  "$vmassd" --config "$out/vmassd.yaml" --lcm-url "file://$out/out.lcm?mode=w" --no-restore \
-    2> "$out/vmassd.log" &
-  pid=$!
-  ready "$out/vmassd.log"
-  sleep 0.5
-  send() { for _ in $(seq "$1"); do cansend vcan0 "$2"; done; }
-  send 50 0B4#0000000000001000   # SPEED, in the DBC
-  send 5 7FF#0102                # not in the DBC: the kernel filter (DBC ids) drops it
-  send 3 0B4#0000                # too short
-  sleep 1
-  ip link set vcan0 down; sleep 1.5
-  ip link set vcan0 up; sleep 1
-  send 10 0B4#0000000000001000
-  sleep 0.5
-  ip link delete vcan0; sleep 1.5
-  # Re-open backoff from the deletion: 0.1, 0.3, 0.7, 1.5, 3.1, 6.3 s: wait past it.
-  ip link add dev vcan0 type vcan; ip link set vcan0 up; sleep 7
-  send 10 0B4#0000000000001000
-  sleep 1
-  kill -TERM "$pid"
-  rc=0; wait "$pid" || rc=$?
-  echo "vmassd (phase 1) exit status $rc"
-  [ "$rc" = 0 ] || exit "$rc"
+    "$vmassd" --config "$out/vmassd.yaml" --lcm-url "file://$out/out.lcm?mode=w" --no-restore \
+      2> "$out/vmassd.log" &
+    pid=$!
+    ready "$out/vmassd.log"
+    sleep 0.5
+    send() { for _ in $(seq "$1"); do cansend vcan1 "$2"; done; }
+    send 50 0B4#0000000000001000   # SPEED, in the DBC
+    send 5 7FF#0102                # not in the DBC: the kernel filter (DBC ids) drops it
+    send 3 0B4#0000                # too short
+    sleep 1
+    ip link set vcan1 down; sleep 1.5
+    ip link set vcan1 up; sleep 1
+    send 10 0B4#0000000000001000
+    sleep 0.5
+    ip link delete vcan1; sleep 1.5
+    # Re-open backoff from the deletion: 0.1, 0.3, 0.7, 1.5, 3.1, 6.3 s: wait past it.
+    ip link add dev vcan1 type vcan; ip link set vcan1 up; sleep 7
+    send 10 0B4#0000000000001000
+    sleep 1
+    kill -TERM "$pid"
+    rc=0; wait "$pid" || rc=$?
+    echo "vmassd (phase 1) exit status $rc"
+    return "$rc"
+  }
+  # Phase 1 and the reader test in the background while phase 2 plays the drive.
+  phase1 > "$out/phase1.txt" 2>&1 &
+  phase1_pid=$!
+  sh "$reader_test" "$vmass_can" vcan2 > "$out/reader.txt" 2>&1 &
+  reader_pid=$!
 
   # ------------------------------------------------------------------ phase 2
   # capture FILE: start candump on vcan0 into FILE and return once it records. A fixed sleep
@@ -135,10 +147,16 @@ YAML
   # The handshake markers are not part of the drive (vmassd's kernel filter drops their id).
   for f in captured1.log captured2.log; do grep -v "$marker" "$out/ram/$f" > "$out/$f" || true; done
   umount "$out/ram"
-  exit "$rc"
+  rc1=0; wait "$phase1_pid" || rc1=$?
+  rc_reader=0; wait "$reader_pid" || rc_reader=$?
+  echo "--- phase 1 (vcan1)"; cat "$out/phase1.txt"
+  echo "--- the SocketCAN reader test (vcan2), exit status $rc_reader"; cat "$out/reader.txt"
+  [ "$rc" = 0 ] || exit "$rc"
+  [ "$rc1" = 0 ] || exit "$rc1"
+  exit "$rc_reader"
 fi
 
-vcan_vm=$1 vmassd=$2 dbc=$3 pydir=$4 sim_bin=$5 replay_bin=$6
+vcan_vm=$1 vmassd=$2 dbc=$3 pydir=$4 sim_bin=$5 replay_bin=$6 vmass_can=$7 reader_test=$8
 out=$(mktemp -d /tmp/vmassd_vcan.XXXXXX)
 trap 'rm -rf "$out"' EXIT
 [ -z "${KEEP_VCAN_OUT:-}" ] || trap - EXIT
@@ -152,7 +170,8 @@ awk '{ t = substr($1, 2, length($1) - 2) + 0; if (t < 30) print > P1; else print
 { cat "$out/sim/config.yaml"; printf 'lcm:\n  status_period_s: 0.25\n'; } \
   > "$out/sim/config_vcan.yaml"
 
-"$vcan_vm" --out "$out" --timeout 420 -- "$0" --inside "$vmassd" "$dbc"
+"$vcan_vm" --ifaces vcan0,vcan1,vcan2 --out "$out" --timeout 420 -- \
+  "$0" --inside "$vmassd" "$dbc" "$vmass_can" "$reader_test"
 
 # ------------------------------------------------------------------ phase 1 checks
 python3 - "$out/out.lcm" "$pydir" <<'PY'
@@ -187,7 +206,7 @@ if last.frames_decoded != 70: fails.append("decoded %d != 70" % last.frames_deco
 if last.frames_unknown != 0: fails.append("unknown %d != 0 (kernel filter)" % last.frames_unknown)
 if last.frames_malformed != 3: fails.append("malformed %d != 3" % last.frames_malformed)
 if last.source_reopens < 1: fails.append("no re-open after the interface was re-created")
-if last.source != "socketcan:vcan0": fails.append("source " + last.source)
+if last.source != "socketcan:vcan1": fails.append("source " + last.source)
 if estimates < 500: fails.append("only %d estimates" % estimates)
 for f in fails: print("FAIL:", f)
 if fails:

@@ -45,8 +45,11 @@ std::vector<std::string> population_scenario_names();
 /// One line: what the scenario stresses. Empty for an unknown name.
 std::string population_scenario_description(std::string_view name);
 
-/// Builds the run. "" or a message (unknown scenario, invalid result).
+/// Builds the run. "" or a message (unknown scenario, invalid result). `payload`, when given,
+/// is the load at the start instead of the one the seed draws (a drive of a vehicle's lifetime:
+/// what the last drive left, changed while parked); placed like the scenario's own.
 std::string make_population_run(const DrawnVehicle& vehicle, std::string_view scenario,
-                                std::uint64_t seed, Realism realism, PopulationRun* out);
+                                std::uint64_t seed, Realism realism, PopulationRun* out,
+                                const std::vector<LoadItem>* payload = nullptr);
 
 }  // namespace vmass::sim
