@@ -28,8 +28,8 @@
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/service/pipeline_state.hpp"
 #include "vmass/service/receive_schedule.hpp"
-#include "vmass/service/state_plausibility.hpp"
 #include "vmass/service/state_store.hpp"
 #include "vmass/service/stop_signals.hpp"
 #include "vmass/service/systemd_notifier.hpp"
@@ -212,24 +212,11 @@ std::string state_path(const DaemonOptions& options, const ServiceSettings& sett
 }
 
 /// Resumes the pipeline from the saved state when it fits. True when restored.
-bool restore_state(const std::string& path, std::uint64_t fingerprint, Pipeline& pipeline) {
-  const StateLoad state = load_state_file(path, fingerprint);
-  if (state.status == StateLoadStatus::kRejected) spdlog::warn("{}; starting fresh", state.error);
-  if (state.status != StateLoadStatus::kLoaded) return false;
-  const std::string implausible = implausible_state(state.state.snapshot, pipeline.params());
-  if (!implausible.empty()) {
-    spdlog::warn("{}: saved state not believable ({}); starting fresh", path, implausible);
-    return false;
-  }
-  if (!pipeline.restore(state.state.snapshot)) {
-    spdlog::warn("{}: saved state refused by the estimator; starting fresh", path);
-    return false;
-  }
-  spdlog::info("restored {} estimate {:.1f} kg from {} ({} pairs); {} will re-check the load",
-               regressor_type_name(pipeline.params().estimator.type), pipeline.estimate().mass_kg,
-               path, state.state.snapshot.pairs_used,
-               pipeline.params().suspension.carries_load() ? "a standstill" : "the drive");
-  return true;
+bool restore_state(const std::string& path, Pipeline& pipeline) {
+  const StateRestore r = restore_pipeline_state(path, pipeline);
+  if (r.refused) spdlog::warn("{}", r.message);
+  if (r.restored) spdlog::info("{}", r.message);
+  return r.restored;
 }
 
 /// What the main thread needs while the others run.
@@ -391,8 +378,8 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
   runtime::TickStep step(params);
   const std::string state_file = state_path(r.options, r.settings);
   const std::uint64_t fingerprint = state_fingerprint(params);
-  const bool restored = !state_file.empty() && !r.options.no_restore &&
-                        restore_state(state_file, fingerprint, step.pipeline());
+  const bool restored =
+      !state_file.empty() && !r.options.no_restore && restore_state(state_file, step.pipeline());
   if (r.plan.recorded && !r.plan.max_speed) {  // at max speed the tick driver reads it
     r.plan.has_first_record = r.source.next_record(0) == runtime::InputSource::Read::kRecord;
     r.plan.t0_us = r.plan.has_first_record ? r.source.record_time_us() : 0;

@@ -2,8 +2,10 @@
 """vmass-accuracy-report: turns vmass-suite's JSON lines into docs/accuracy.md and its plots.
 
   vmass-accuracy-report --population RUNS.jsonl [--held-out RUNS.jsonl] [--ablation RUNS.jsonl]
+                        [--lifetime RUNS.jsonl] [--lifetime-held-out RUNS.jsonl]
                         [--series-dir DIR] [--plots-dir DIR] --out docs/accuracy.md
                         [--command "..."] [--commit SHA] [--population-hash HASH]
+  vmass-accuracy-report --lifetime RUNS.jsonl --out -     (the lifetime tables alone, to stdout)
 
 Every number in the report is computed here from the JSON lines; nothing is typed in by hand.
 Statistics are over the SUPPORTED runs of a (scenario, estimator, knowledge) cell; a run whose
@@ -225,6 +227,48 @@ def ablation_table(rows, out):
         out.append(f"| {label} | " + " | ".join(cells) + f" | {fmt(cost)} |")
 
 
+def lifetime_table(rows, knowledge, out):
+    """By drive index: the lifetime runs (state carried) beside the same drives fresh."""
+    rows = [r for r in rows if r.get("knowledge") == knowledge]
+    by = group(rows, "deflection_sensor", "drive", "mode")
+    out.append("| deflection sensor | drive | load changed before | median \\|final\\| %, "
+               "lifetime / fresh | p90 % | covers at 20 s / 60 s / end %, lifetime | the same, "
+               "fresh | half-width % | converged then >20 % outside, % of runs | restored |")
+    out.append("|" + "---|" * 10)
+    for sensor in (True, False):
+        drives = sorted({r["drive"] for r in rows if r.get("deflection_sensor") == sensor})
+        for d in drives:
+            life = by.get((sensor, d, "lifetime"), [])
+            fresh = by.get((sensor, d, "fresh"), [])
+            if not life:
+                continue
+            sl, sf = cell_stats(life), cell_stats(fresh)
+            changed = sum(1 for r in life if r.get("load_change"))
+            restored = sum(1 for r in life if r.get("restored"))
+            out.append(
+                f"| {'yes' if sensor else 'no'} | {d} | {changed}/{len(life)} | "
+                f"{fmt(sl['median'])} / {fmt(sf['median'])} | {fmt(sl['p90'])} / {fmt(sf['p90'])} | "
+                f"{fmt(sl['cov20'], 0)} / {fmt(sl['cov60'], 0)} / {fmt(sl['covend'], 0)} | "
+                f"{fmt(sf['cov20'], 0)} / {fmt(sf['cov60'], 0)} / {fmt(sf['covend'], 0)} | "
+                f"{fmt(sl['halfwidth'])} / {fmt(sf['halfwidth'])} | "
+                f"{fmt(sl['conv_bad'], 0)} / {fmt(sf['conv_bad'], 0)} | {restored}/{len(life)} |")
+
+
+def lifetime_section(rows, title, out):
+    lives = {(r["vehicle"], r.get("life")) for r in rows}
+    drives = max((r["drive"] for r in rows), default=0)
+    out.append(f"{title}: {len({r['vehicle'] for r in rows})} vehicles, {len(lives)} lives of "
+               f"{drives} drives, estimators {', '.join(ordered_estimators(rows))}.\n")
+    for est in ordered_estimators(rows):
+        for k in KNOWLEDGE:
+            sub = [r for r in rows if r.get("knowledge") == k and r.get("estimator") == est]
+            if not sub:
+                continue
+            out.append(f"### {est}, {k.replace('_', ' ')}\n")
+            lifetime_table(sub, k, out)
+            out.append("")
+
+
 def plot_series(series_dir, plots_dir, out):
     try:
         import matplotlib
@@ -292,7 +336,9 @@ def plot_series(series_dir, plots_dir, out):
 def main():
     global args
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--population", required=True)
+    p.add_argument("--population")
+    p.add_argument("--lifetime")
+    p.add_argument("--lifetime-held-out")
     p.add_argument("--held-out")
     p.add_argument("--ablation")
     p.add_argument("--series-dir")
@@ -303,6 +349,13 @@ def main():
     p.add_argument("--population-hash", default="")
     p.add_argument("--seconds", default="")
     args = p.parse_args()
+    if not args.population:
+        if not args.lifetime:
+            p.error("--population or --lifetime is required")
+        out = []
+        lifetime_section(load(args.lifetime), "Lifetime", out)
+        write_report(args.out, out)
+        return
 
     population = load(args.population)
     errors = [r for r in population if "error" in r]
@@ -351,11 +404,27 @@ def main():
         out.append("## Ablation: each effect alone on one nominal car\n")
         ablation_table(load(args.ablation), out)
         out.append("")
+    if args.lifetime:
+        out.append("## A vehicle's Nth drive (lifetime mode)\n")
+        out.append("Each vehicle drives drive after drive through the daemon's state file (vmass-suite "
+                   "--lifetime: the load changed while parked before at least half of the drives, a "
+                   "day between drives), with and without its deflection sensor; beside each drive "
+                   "the same drive replayed fresh.\n")
+        lifetime_section(load(args.lifetime), "Population", out)
+        if args.lifetime_held_out:
+            lifetime_section(load(args.lifetime_held_out), "Held-out vehicles", out)
     if args.series_dir and os.path.isdir(args.series_dir):
         out.append("## Chosen drives (in the style of the paper's Figs. 8 and 10)\n")
         plot_series(args.series_dir, args.plots_dir or os.path.join(os.path.dirname(args.out), "accuracy"), out)
-    with open(args.out, "w", encoding="utf-8") as f:
-        f.write("\n".join(out) + "\n")
+    write_report(args.out, out)
+
+
+def write_report(path, lines):
+    if path == "-":
+        sys.stdout.write("\n".join(lines) + "\n")
+        return
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":

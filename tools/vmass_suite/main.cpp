@@ -7,7 +7,12 @@
 //               [--realism all|none|...] [--estimator-yaml FILE] [--jobs J] --out FILE.jsonl
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
+//   vmass-suite --lifetime DRIVES [--vehicles N] [--held-out] [--lives K] [--knowledge ...]
+//               [--estimators bayes,rls] [--keep-dir DIR] [--jobs J] --out FILE.jsonl
 //   vmass-suite --list-scenarios | --population-hash
+//
+// --lifetime drives each vehicle DRIVES drives in a row through the daemon's state file (loads
+// changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle.
 //
 // --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
 // --series-dir DIR writes per-tick CSVs (10 Hz) of the runs named by --series RUN,... where
@@ -27,6 +32,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "lifetime_run.hpp"
 #include "suite_run.hpp"
 #include "vmass/sim/population.hpp"
 #include "vmass/sim/population_scenarios.hpp"
@@ -74,6 +80,9 @@ struct Options {
   std::string scenarios, estimators, knowledge, realism = "all", estimator_yaml_path, out;
   std::string ablation, series_dir, series, runs;
   int jobs = 0;
+  int lifetime_drives = 0;  ///< > 0: the lifetime mode
+  int lives = 1;
+  std::string keep_dir;
 };
 
 bool parse_knowledge(const std::string& text, std::vector<vmass::sim::Knowledge>* out) {
@@ -191,8 +200,44 @@ std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
   return "";
 }
 
-int run_all(const std::vector<vmass::suite::RunSpec>& specs, int jobs,
-            const std::string& out_path) {
+// The lifetime mode's lives: every vehicle of the population (or the held-out set), K lives.
+std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeSpec>* specs) {
+  vmass::suite::LifetimeSpec base;
+  base.drives = o.lifetime_drives;
+  base.keep_dir = o.keep_dir;
+  base.series_dir = o.series_dir;
+  if (!o.estimators.empty()) base.estimators = split(o.estimators);
+  for (const std::string& e : base.estimators) {
+    if (e != "rls" && e != "bayes") return "--lifetime: estimator '" + e + "' is not rls or bayes";
+  }
+  if (!o.knowledge.empty() && !parse_knowledge(o.knowledge, &base.knowledge)) {
+    return "--knowledge: expected known_scale and/or datasheet_scale";
+  }
+  if (!o.estimator_yaml_path.empty()) {
+    bool ok = false;
+    base.estimator_yaml = read_text(o.estimator_yaml_path, &ok);
+    if (!ok) return o.estimator_yaml_path + ": cannot read";
+  }
+  const auto realism = Realism::parse(o.realism);
+  if (!realism) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
+  base.realism = *realism;
+  base.realism_label = o.realism;
+  const std::uint64_t first = o.held_out ? vmass::sim::kHeldOutFirstSeed : o.first_seed;
+  for (const auto& v : vmass::sim::draw_population(o.vehicles, first)) {
+    for (int life = 1; life <= o.lives; ++life) {
+      vmass::suite::LifetimeSpec spec = base;
+      spec.vehicle_id = v.id;
+      spec.life = static_cast<std::uint64_t>(life);
+      specs->push_back(spec);
+    }
+  }
+  return "";
+}
+
+// Runs `count` jobs on `jobs` threads, each in its own work directory; `run(i, dir)` returns
+// the JSON lines of job i and an error ("" when it went well). Exit code 0, 1 or 2.
+template <class Run>
+int run_parallel(std::size_t count, int jobs, const std::string& out_path, Run run) {
   std::ofstream out(out_path, std::ios::trunc);
   if (!out) {
     std::cerr << "vmass-suite: " << out_path << ": cannot write\n";
@@ -206,17 +251,17 @@ int run_all(const std::vector<vmass::suite::RunSpec>& specs, int jobs,
   auto worker = [&](int id) {
     const fs::path dir = work_root / std::to_string(id);
     fs::create_directories(dir);
-    for (std::size_t i = next++; i < specs.size(); i = next++) {
-      const vmass::suite::RunResult r = vmass::suite::run_suite_case(specs[i], dir.string());
+    for (std::size_t i = next++; i < count; i = next++) {
+      std::string error;
+      const std::string lines = run(i, dir.string(), &error);
       std::lock_guard<std::mutex> lock(out_mutex);
-      if (!r.error.empty()) {
+      if (!error.empty()) {
         ++failures;
-        std::cerr << "vmass-suite: " << specs[i].vehicle_id << " " << specs[i].scenario << " seed "
-                  << specs[i].seed << ": " << r.error << "\n";
+        std::cerr << "vmass-suite: " << error << "\n";
       }
-      out << vmass::suite::to_json_lines(r);
-      if ((i + 1) % 25 == 0 || i + 1 == specs.size()) {
-        std::cerr << "vmass-suite: " << (i + 1) << "/" << specs.size() << " runs\n";
+      out << lines;
+      if ((i + 1) % 25 == 0 || i + 1 == count) {
+        std::cerr << "vmass-suite: " << (i + 1) << "/" << count << " runs\n";
       }
     }
   };
@@ -231,6 +276,31 @@ int run_all(const std::vector<vmass::suite::RunSpec>& specs, int jobs,
     return kExitFailure;
   }
   return failures > 0 ? kExitFailure : 0;
+}
+
+int run_all(const std::vector<vmass::suite::RunSpec>& specs, int jobs,
+            const std::string& out_path) {
+  return run_parallel(
+      specs.size(), jobs, out_path, [&](std::size_t i, const std::string& dir, std::string* error) {
+        const vmass::suite::RunResult r = vmass::suite::run_suite_case(specs[i], dir);
+        if (!r.error.empty()) {
+          *error = specs[i].vehicle_id + " " + specs[i].scenario + " seed " +
+                   std::to_string(specs[i].seed) + ": " + r.error;
+        }
+        return vmass::suite::to_json_lines(r);
+      });
+}
+
+int run_lifetimes(const std::vector<vmass::suite::LifetimeSpec>& specs, int jobs,
+                  const std::string& out_path) {
+  return run_parallel(
+      specs.size(), jobs, out_path, [&](std::size_t i, const std::string& dir, std::string* error) {
+        const vmass::suite::LifetimeResult r = vmass::suite::run_lifetime(specs[i], dir);
+        if (!r.error.empty()) {
+          *error = specs[i].vehicle_id + " life " + std::to_string(specs[i].life) + ": " + r.error;
+        }
+        return r.json_lines;
+      });
 }
 
 }  // namespace
@@ -256,6 +326,12 @@ int main(int argc, char** argv) {
   app.add_option("--runs", o.runs,
                  "only these runs, VEHICLE:SCENARIO:SEED,... (VEHICLE nominal: "
                  "the ablation's car)");
+  app.add_option("--lifetime", o.lifetime_drives,
+                 "drives per life: each vehicle drive after drive through the state file")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--lives", o.lives, "lives per vehicle (--lifetime)")->check(CLI::Range(1, 100));
+  app.add_option("--keep-dir", o.keep_dir,
+                 "--lifetime: keep each variant's logs, config and state files here");
   app.add_option("--jobs", o.jobs, "threads (default: all cores)");
   app.add_option("--out", o.out, "JSON lines output");
   app.add_flag("--list-scenarios", list, "list the population scenarios and exit");
@@ -282,14 +358,27 @@ int main(int argc, char** argv) {
     std::cerr << "vmass-suite: --out FILE is required\n";
     return kExitUsage;
   }
+  const int jobs =
+      o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (o.lifetime_drives > 0) {
+    std::vector<vmass::suite::LifetimeSpec> lives;
+    if (auto m = plan_lifetimes(o, &lives); !m.empty()) {
+      std::cerr << "vmass-suite: " << m << "\n";
+      return kExitUsage;
+    }
+    if (!o.keep_dir.empty()) fs::create_directories(o.keep_dir);
+    if (!o.series_dir.empty()) fs::create_directories(o.series_dir);
+    std::cerr << "vmass-suite: " << lives.size() << " lives of " << o.lifetime_drives
+              << " drives on " << jobs << " threads, population "
+              << vmass::sim::population_definition_hash() << "\n";
+    return run_lifetimes(lives, jobs, o.out);
+  }
   std::vector<vmass::suite::RunSpec> specs;
   if (auto m = plan(o, &specs); !m.empty()) {
     std::cerr << "vmass-suite: " << m << "\n";
     return kExitUsage;
   }
   if (!o.series_dir.empty()) fs::create_directories(o.series_dir);
-  const int jobs =
-      o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::cerr << "vmass-suite: " << specs.size() << " runs on " << jobs << " threads, population "
             << vmass::sim::population_definition_hash() << "\n";
   return run_all(specs, jobs, o.out);

@@ -18,8 +18,10 @@
 #include <vector>
 
 #include "accuracy_metrics.hpp"
+#include "vmass/core/pipeline.hpp"
 #include "vmass/sim/datasheet_config.hpp"
 #include "vmass/sim/realism.hpp"
+#include "vmass/sim/simulator.hpp"
 
 namespace vmass::suite {
 
@@ -60,6 +62,14 @@ struct RunResult {
   double initial_true_mass_kg = 0.0;
   std::vector<EstimatorResult> results;
 };
+
+/// The simulation's truth, its times shifted by `time_offset_us` (as the drive's frames).
+TruthTrack truth_track(const sim::SimulationResult& result, TimeUs time_offset_us);
+
+/// Steps `pipeline` (new, or restored from a state) through the samples and scores it.
+EstimatorResult run_pipeline(const std::string& name, Pipeline& pipeline,
+                             const std::vector<Sample>& samples, const TruthTrack& truth,
+                             const std::string& series_path);
 
 /// The estimators run by default: rls, bayes, then every baseline.
 std::vector<std::string> default_estimators();

@@ -1,0 +1,23 @@
+// Resuming a pipeline from the daemon's state file: what vmassd does at its start, as a
+// function the accuracy suite's lifetime mode runs too, so that a vehicle's Nth drive is
+// measured through the daemon's own state file (the same file, the same checks: the file's
+// checksum and fingerprint, the plausibility of every field, the estimator's own restore).
+//
+// Reentrant; does file I/O (never from the estimator thread).
+#pragma once
+
+#include <string>
+
+#include "vmass/core/pipeline.hpp"
+
+namespace vmass::service {
+
+struct StateRestore {
+  bool restored = false;
+  bool refused = false;  ///< a state file was there but not restored (why: message)
+  std::string message;   ///< what to log; "" when there was no file
+};
+
+StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline);
+
+}  // namespace vmass::service

@@ -1,0 +1,49 @@
+// Lifetime: a vehicle of the population as it lives, drive after drive. Each drive is one of
+// the population's everyday scenarios; it starts with the load the last drive left, changed
+// while parked before at least half of the drives (a few passengers in or out, the boot filled
+// or emptied, cargo loaded or unloaded), and it starts a day after the last one. The accuracy
+// suite's lifetime mode (vmass-suite --lifetime) drives it through the daemon's state file,
+// carried from drive to drive, beside the same drives replayed fresh.
+//
+// Not modelled: a trailer (it changes the drag, the rolling resistance and the pitch as well
+// as the mass, and the simulator's vehicle has no hitch).
+//
+// Pure functions; thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vmass/sim/mass_properties.hpp"
+#include "vmass/sim/population.hpp"
+
+namespace vmass::sim {
+
+/// A drive starts this long after the last one started (the drives' logs are a day apart).
+constexpr double kLifetimeDriveSpacingS = 86400.0;
+
+struct LifetimeDrive {
+  int index = 1;  ///< 1-based
+  std::string scenario;
+  std::uint64_t seed = 1;         ///< the scenario's seed (its drive and noise)
+  std::vector<LoadItem> payload;  ///< at the start, where it sits (placed by the realism)
+  std::string load_change;        ///< what changed while parked before it; "" nothing
+  double payload_change_kg = 0.0;
+};
+
+/// The everyday scenarios a lifetime rotates through (no biased config, no bus faults, no
+/// load deliberately at the bump stop).
+std::vector<std::string> lifetime_scenario_names();
+
+/// `drives` drives of `vehicle`'s life number `life` (>= 1; another life, other loads and
+/// other drives). The load changes before every even drive, and before an odd one with
+/// probability 0.3.
+std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives,
+                                         std::uint64_t life);
+
+/// The total mass of the items, kg.
+double payload_mass_kg(const std::vector<LoadItem>& items);
+
+}  // namespace vmass::sim

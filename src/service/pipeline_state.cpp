@@ -1,0 +1,42 @@
+#include "vmass/service/pipeline_state.hpp"
+
+#include <cstdio>
+
+#include "vmass/service/state_plausibility.hpp"
+#include "vmass/service/state_store.hpp"
+
+namespace vmass::service {
+
+StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline) {
+  StateRestore out;
+  const StateLoad state = load_state_file(path, state_fingerprint(pipeline.params()));
+  if (state.status == StateLoadStatus::kMissing) return out;
+  out.refused = true;
+  if (state.status == StateLoadStatus::kRejected) {
+    out.message = state.error + "; starting fresh";
+    return out;
+  }
+  const std::string implausible = implausible_state(state.state.snapshot, pipeline.params());
+  if (!implausible.empty()) {
+    out.message = path + ": saved state not believable (" + implausible + "); starting fresh";
+    return out;
+  }
+  PipelineSnapshot snapshot = state.state.snapshot;
+  snapshot.time_us = state.state.saved_time_us;  // the file keeps it beside the snapshot
+  if (!pipeline.restore(snapshot)) {
+    out.message = path + ": saved state refused by the estimator; starting fresh";
+    return out;
+  }
+  out.refused = false;
+  out.restored = true;
+  char mass[32];
+  std::snprintf(mass, sizeof mass, "%.1f", pipeline.estimate().mass_kg);
+  out.message = "restored " + std::string(regressor_type_name(pipeline.params().estimator.type)) +
+                " estimate " + mass + " kg from " + path + " (" +
+                std::to_string(state.state.snapshot.pairs_used) + " pairs); " +
+                (pipeline.params().suspension.carries_load() ? "a standstill" : "the drive") +
+                " will re-check the load";
+  return out;
+}
+
+}  // namespace vmass::service

@@ -1,0 +1,77 @@
+#include "decoded_drive.hpp"
+
+#include <fstream>
+#include <utility>
+
+#include "vmass/runtime/can_input_source.hpp"
+#include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/tick_driver.hpp"
+#include "vmass/signals/signal_mapping.hpp"
+#include "vmass/sim/population_writer.hpp"
+#include "vmass/sim/vehicle_bus.hpp"
+
+namespace vmass::suite {
+
+std::string write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  return out ? "" : "cannot write " + path;
+}
+
+std::string without_dir(std::string message, const std::string& dir) {
+  const std::string prefix = dir + "/";
+  for (std::size_t at = message.find(prefix); at != std::string::npos; at = message.find(prefix)) {
+    message.erase(at, prefix.size());
+  }
+  return message;
+}
+
+DecodedDrive decode_drive(const sim::DrawnVehicle& vehicle, const sim::PopulationRun& run,
+                          const sim::SimulationResult& result, sim::Knowledge knowledge,
+                          const DecodeOptions& options, const std::string& work_dir) {
+  DecodedDrive out;
+  const sim::VehicleBus bus(vehicle);
+  sim::BusOptions bus_options = run.bus;
+  bus_options.torque_report_scale *= sim::torque_report_scale(vehicle, knowledge);
+  std::vector<can::CanFrame> frames;
+  if (auto m = bus.encode(result, bus_options, &frames); !m.empty()) {
+    out.error = "bus: " + m;
+    return out;
+  }
+  for (can::CanFrame& f : frames) f.time_us += options.time_offset_us;
+  std::string yaml = sim::datasheet_config_yaml(vehicle, run.realism, knowledge, "vehicle.dbc");
+  if (!options.estimator_yaml.empty()) yaml += "\n" + options.estimator_yaml + "\n";
+  out.config_path = work_dir + "/config.yaml";
+  if (auto m = write_file(work_dir + "/vehicle.dbc", bus.dbc_text()); !m.empty()) {
+    out.error = m;
+    return out;
+  }
+  if (auto m = write_file(out.config_path, yaml); !m.empty()) {
+    out.error = m;
+    return out;
+  }
+  ConfigLoad loaded = load_config(out.config_path);
+  if (!loaded.ok()) {
+    out.error = loaded.error;
+    return out;
+  }
+  signals::CanInputsLoad can = signals::load_can_inputs(*loaded.config);
+  if (!can.ok()) {
+    out.error = can.error;
+    return out;
+  }
+  std::string text = sim::candump_text(frames);
+  if (options.keep_log_text) out.log_text = text;
+  runtime::CanInputSource source(
+      runtime::CandumpFrameSource::from_text(std::move(text), "drive.log"), can.inputs->decoder,
+      can.inputs->mapping);
+  out.samples.reserve(result.truth.size() + 16);
+  runtime::UnpacedClock clock;
+  runtime::TickDriver(source, loaded.config->pipeline.estimator.differencing.tick_rate_hz)
+      .run(clock, [&](std::int64_t, TimeUs t) { out.samples.push_back(source.sample_at(t)); });
+  out.config = std::move(loaded.config);
+  return out;
+}
+
+}  // namespace vmass::suite

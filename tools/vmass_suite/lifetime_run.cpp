@@ -1,0 +1,209 @@
+#include "lifetime_run.hpp"
+
+#include <filesystem>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "decoded_drive.hpp"
+#include "result_json.hpp"
+#include "suite_run.hpp"
+#include "vmass/core/pipeline.hpp"
+#include "vmass/service/pipeline_state.hpp"
+#include "vmass/service/state_store.hpp"
+#include "vmass/sim/lifetime.hpp"
+#include "vmass/sim/population_scenarios.hpp"
+#include "vmass/sim/simulator.hpp"
+
+namespace vmass::suite {
+
+namespace {
+
+/// One way of carrying the vehicle through its life: a knowledge, with or without the
+/// deflection sensor, one estimator. Its state file lives from drive to drive.
+struct Variant {
+  sim::Knowledge knowledge;
+  bool deflection;
+  std::string estimator;
+  std::string state_path;
+  std::string keep_dir;  ///< "": nothing kept
+};
+
+std::string variant_name(const LifetimeSpec& spec, const Variant& v) {
+  return spec.vehicle_id + "_" + std::string(sim::knowledge_name(v.knowledge)) + "_" +
+         (v.deflection ? "deflection" : "no_deflection") + "_" + v.estimator;
+}
+
+std::vector<Variant> variants(const LifetimeSpec& spec, const sim::DrawnVehicle& vehicle,
+                              const std::string& work_dir) {
+  std::vector<Variant> out;
+  // A levelled (air) rear axle's ride height carries no load: such a car has no "with".
+  const bool reads_load = vehicle.sensors.deflection && !vehicle.vehicle.rear_levelling;
+  for (sim::Knowledge k : spec.knowledge) {
+    for (bool deflection : {true, false}) {
+      if (deflection && !reads_load) continue;
+      for (const std::string& estimator : spec.estimators) {
+        Variant v{k, deflection, estimator, "", ""};
+        const std::string name = variant_name(spec, v);
+        v.state_path = work_dir + "/" + name + ".state";
+        if (!spec.keep_dir.empty()) v.keep_dir = spec.keep_dir + "/" + name;
+        out.push_back(v);
+      }
+    }
+  }
+  return out;
+}
+
+PipelineParams params_for(const Config& config, const std::string& estimator) {
+  PipelineParams params = config.pipeline;
+  params.estimator.type = estimator == "rls" ? RegressorType::kRls : RegressorType::kBayes;
+  return params;
+}
+
+/// The drive through a pipeline restored from the variant's state file, saved there after it
+/// as vmassd saves it at its stop (the open batch flushed; nothing saved without a prior).
+EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const TruthTrack& truth,
+                               const std::string& series, bool* restored, std::string* error) {
+  auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
+  const service::StateRestore restore = service::restore_pipeline_state(v.state_path, *pipeline);
+  *restored = restore.restored;
+  if (restore.refused) *error = restore.message;
+  EstimatorResult r = run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
+  pipeline->flush();
+  service::SavedState state;
+  state.snapshot = pipeline->snapshot();
+  state.saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
+  state.fingerprint = service::state_fingerprint(pipeline->params());
+  if (state.snapshot.has_prior && !service::save_state_file(v.state_path, state, error)) {
+    r.supported = false;
+    r.unsupported_reason = *error;
+  }
+  return r;
+}
+
+EstimatorResult fresh_drive(const Variant& v, const DecodedDrive& d, const TruthTrack& truth,
+                            const std::string& series) {
+  auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
+  return run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
+}
+
+std::string series_path(const LifetimeSpec& spec, const Variant& v, int drive, const char* mode) {
+  if (spec.series_dir.empty()) return "";
+  return spec.series_dir + "/" + variant_name(spec, v) + "_life" + std::to_string(spec.life) +
+         "_drive" + std::to_string(drive) + "_" + mode + ".csv";
+}
+
+std::string keep_files(const Variant& v, const sim::LifetimeDrive& drive, const DecodedDrive& d) {
+  if (v.keep_dir.empty()) return "";
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(v.keep_dir, ec);
+  const std::string n = std::to_string(drive.index);
+  const std::string dir = fs::path(d.config_path).parent_path().string();
+  fs::copy_file(d.config_path, v.keep_dir + "/config.yaml", fs::copy_options::overwrite_existing,
+                ec);
+  if (!ec) {
+    fs::copy_file(dir + "/vehicle.dbc", v.keep_dir + "/vehicle.dbc",
+                  fs::copy_options::overwrite_existing, ec);
+  }
+  if (!ec && fs::exists(v.state_path)) {
+    fs::copy_file(v.state_path, v.keep_dir + "/state_after_drive_" + n,
+                  fs::copy_options::overwrite_existing, ec);
+  }
+  if (ec) return v.keep_dir + ": " + ec.message();
+  return write_file(v.keep_dir + "/drive_" + n + ".log", d.log_text);
+}
+
+nlohmann::json drive_json(const LifetimeSpec& spec, const sim::DrawnVehicle& vehicle,
+                          const sim::LifetimeDrive& drive, const sim::PopulationRun& run,
+                          const sim::SimulationResult& result, const Variant& v) {
+  nlohmann::json j;
+  j["vehicle"] = spec.vehicle_id;
+  j["class"] = std::string(sim::vehicle_class_name(vehicle.vehicle_class));
+  j["scenario"] = drive.scenario;
+  j["seed"] = drive.seed;
+  j["realism"] = spec.realism_label;
+  j["duration_s"] = run.physics.duration_s;
+  j["initial_true_mass_kg"] = result.truth.front().mass_kg;
+  j["life"] = spec.life;
+  j["drive"] = drive.index;
+  j["load_change"] = drive.load_change;
+  j["payload_change_kg"] = drive.payload_change_kg;
+  j["deflection_sensor"] = v.deflection;
+  return j;
+}
+
+}  // namespace
+
+LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_dir) {
+  LifetimeResult out;
+  sim::DrawnVehicle vehicle;
+  if (!sim::parse_vehicle_id(spec.vehicle_id, &vehicle, &out.error)) return out;
+  const std::vector<Variant> all = variants(spec, vehicle, work_dir);
+  for (const Variant& v : all) std::filesystem::remove(v.state_path);
+  for (const sim::LifetimeDrive& drive : sim::plan_lifetime(vehicle, spec.drives, spec.life)) {
+    sim::PopulationRun run;
+    if (auto m = sim::make_population_run(vehicle, drive.scenario, drive.seed, spec.realism, &run,
+                                          &drive.payload);
+        !m.empty()) {
+      out.error = m;
+      return out;
+    }
+    sim::SimulationOptions options;
+    options.seed = drive.seed;
+    options.realism = spec.realism;
+    options.record_ecu_trace = true;
+    sim::SimulationResult result;
+    if (auto m = sim::simulate(run.physics, options, &result); !m.empty()) {
+      out.error = m;
+      return out;
+    }
+    const TimeUs offset = from_seconds(sim::kLifetimeDriveSpacingS * (drive.index - 1));
+    const TruthTrack truth = truth_track(result, offset);
+    for (const Variant& v : all) {
+      sim::DrawnVehicle on_bus = vehicle;
+      on_bus.sensors.deflection = v.deflection;
+      DecodeOptions decode_options{spec.estimator_yaml, offset, !v.keep_dir.empty()};
+      DecodedDrive d = decode_drive(on_bus, run, result, v.knowledge, decode_options, work_dir);
+      nlohmann::json base = drive_json(spec, vehicle, drive, run, result, v);
+      if (!d.config) {
+        EstimatorResult r;
+        r.estimator = v.estimator;
+        r.knowledge = v.knowledge;
+        r.supported = false;
+        r.unsupported_reason = without_dir(d.error, work_dir);
+        for (const char* mode : {"lifetime", "fresh"}) {
+          nlohmann::json j = base;
+          j["mode"] = mode;
+          add_result_fields(r, &j);
+          out.json_lines += j.dump() + "\n";
+        }
+        continue;
+      }
+      bool restored = false;
+      std::string restore_error;
+      EstimatorResult life = lifetime_drive(
+          v, d, truth, series_path(spec, v, drive.index, "lifetime"), &restored, &restore_error);
+      life.knowledge = v.knowledge;
+      EstimatorResult fresh = fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"));
+      fresh.knowledge = v.knowledge;
+      if (auto m = keep_files(v, drive, d); !m.empty()) {
+        out.error = m;
+        return out;
+      }
+      nlohmann::json j = base;
+      j["mode"] = "lifetime";
+      j["restored"] = restored;
+      if (!restore_error.empty()) j["restore_message"] = without_dir(restore_error, work_dir);
+      add_result_fields(life, &j);
+      out.json_lines += j.dump() + "\n";
+      j = base;
+      j["mode"] = "fresh";
+      add_result_fields(fresh, &j);
+      out.json_lines += j.dump() + "\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace vmass::suite

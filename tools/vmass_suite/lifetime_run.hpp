@@ -1,0 +1,49 @@
+// The accuracy suite's lifetime mode: one population vehicle driven drive after drive
+// (vmass/sim/lifetime.hpp: the load changed while parked before at least half of the drives,
+// a day between drives). Every drive goes through vmass twice, on the same frames:
+//   lifetime  restored from the state file the last drive saved, as vmassd restores it at its
+//             start under systemd (service::restore_pipeline_state: the same file, the same
+//             checks), and saved there at its end with the open batch flushed, as at vmassd's
+//             stop (tests/suite/lifetime_daemon_test.sh checks that vmassd --replay writes the
+//             same file);
+//   fresh     a new pipeline, as every other figure of the suite.
+// For each kind of knowledge, and on a vehicle with a deflection sensor also without it (the
+// same bus without the level message, the config without a suspension section).
+//
+// Thread-safe for distinct work directories.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vmass/sim/datasheet_config.hpp"
+#include "vmass/sim/realism.hpp"
+
+namespace vmass::suite {
+
+struct LifetimeSpec {
+  std::string vehicle_id;
+  std::uint64_t life = 1;  ///< which life (other loads, other drives)
+  int drives = 10;
+  std::vector<sim::Knowledge> knowledge = {sim::Knowledge::kKnownScale,
+                                           sim::Knowledge::kDatasheetScale};
+  std::vector<std::string> estimators = {"bayes"};  ///< rls and/or bayes
+  std::string estimator_yaml;                       ///< appended to every config (experiments)
+  sim::Realism realism = sim::Realism::all();
+  std::string realism_label = "all";
+  /// "": nothing kept; else each variant's drives as candump logs, its config and DBC, and the
+  /// state file after each drive, in DIR/<vehicle>_<knowledge>_<sensor>_<estimator>/.
+  std::string keep_dir;
+  /// "": no series; else per-tick CSVs (10 Hz) of every drive, both modes, in DIR.
+  std::string series_dir;
+};
+
+struct LifetimeResult {
+  std::string error;       ///< the life itself failed (a bug)
+  std::string json_lines;  ///< one line per (drive, variant, estimator, mode)
+};
+
+LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_dir);
+
+}  // namespace vmass::suite
