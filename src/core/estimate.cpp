@@ -44,6 +44,8 @@ std::string_view reason_name(StatusReason r) {
       return "load_change_suspected";
     case StatusReason::kLagProvisional:
       return "lag_provisional";
+    case StatusReason::kLoadUnchecked:
+      return "load_unchecked";
   }
   return "unknown";
 }
@@ -70,6 +72,11 @@ std::string Estimate::describe_reason() const {
     text +=
         ": the driveline lag is not identified yet; the pairs held until it is enter at the best "
         "fit so far, the interval includes the lag's uncertainty";
+  }
+  if (reason == StatusReason::kLoadUnchecked) {
+    text +=
+        ": restored after the vehicle was off, when the load may have changed; the first "
+        "standstill re-checks it, until then the interval holds any load";
   }
   return text;
 }

@@ -79,6 +79,10 @@ bool LoadChangeMonitor::contradicts(const RegressorState& main) const {
          difference > params_.decide_sigma * std::hypot(c.mass_std_kg, main.mass_std_kg);
 }
 
+bool LoadChangeMonitor::undecided() const {
+  return active_ && challenger().state().pairs_used < params_.min_pairs;
+}
+
 bool LoadChangeMonitor::suspects(const RegressorState& main) const {
   if (!active_) return false;
   const RegressorState c = challenger().state();

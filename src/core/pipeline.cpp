@@ -181,33 +181,108 @@ bool Pipeline::flush() {
   return true;
 }
 
+void Pipeline::on_static_mass(const StaticMass& static_mass, StepResult* result) {
+  // Every reported window became the static initialiser's reference (kept for snapshots).
+  has_reference_ = true;
+  reference_deflection_m_ = static_mass.deflection_m;
+  reference_deflection_std_m_ = static_mass.deflection_std_m;
+  reference_grade_accel_mps2_ = static_mass.grade_accel_mps2;
+  // The first standstill after driving on the empty-mass prior does not throw away what the
+  // events taught. A load change shifts the belief by the added mass (with the payload
+  // prior's uncertainty) rather than forgetting what the drive taught about the vehicle.
+  const RegressorState state = regressor_->state();
+  const bool events_used = has_prior_ && state.pairs_used > 0;
+  if (static_mass.load_changed && events_used) {
+    MassPrior shifted = static_mass.prior;
+    shifted.mass_kg = state.mass_kg + static_mass.mass_change_kg;
+    shifted.mass_std_kg = std::hypot(state.mass_std_kg, static_mass.mass_change_std_kg);
+    restart(shifted, StatusReason::kLoadChanged);
+  } else if (static_mass.load_changed || !events_used) {
+    restart(static_mass.prior, static_mass.load_changed ? StatusReason::kLoadChanged
+                                                        : StatusReason::kStaticInitialised);
+  } else {
+    return;
+  }
+  result->reinitialised = true;
+  result->estimate_changed = true;
+}
+
+MassPrior Pipeline::carried_prior(double change_std_kg) const {
+  MassPrior p;
+  p.mass_kg = carried_.mass_kg;
+  p.mass_std_kg = std::hypot(carried_.mass_std_kg, change_std_kg);
+  // mu (what the model leaves out of the resistances) moves with the road, the tyres and the
+  // weather from drive to drive: its prior spread again.
+  p.mu_n = carried_.mu_n;
+  p.mu_std_n = std::hypot(carried_.mu_std_n, params_.estimator.static_init.mu_prior_std_n);
+  return p;
+}
+
+void Pipeline::begin_after_restore(const Sample& sample, StepResult* result) {
+  restore_pending_ = false;
+  const double off_s = to_seconds(sample.time_us - restored_time_us_);
+  if (off_s >= 0.0 && off_s <= params_.estimator.load_change.min_stop_s) return;  // same drive
+  // A power cycle: any load the vehicle carries, around the one it carried.
+  restart(carried_prior(static_init_.no_static_prior().mass_std_kg), StatusReason::kRestored);
+  load_unchecked_ = params_.suspension.carries_load();
+  result->reinitialised = true;
+  result->estimate_changed = true;
+}
+
+void Pipeline::check_restored_load(const std::optional<StaticMass>& static_mass,
+                                   StepResult* result) {
+  load_unchecked_ = false;
+  const StandstillWindow& w = static_init_.last_window();
+  MassPrior prior;
+  StatusReason reason = StatusReason::kRestored;
+  if (w.verdict == WindowVerdict::kUnchanged) {
+    // An unseen change of up to the window's threshold (eq. 3 kg, uniform), in kg of payload
+    // wherever it sits: E[(U / q)^2] = E[U^2] E[1 / q^2].
+    const double factor =
+        std::hypot(static_init_.payload_factor_mean(), static_init_.payload_factor_std());
+    prior = carried_prior(factor * w.threshold_kg / std::sqrt(3.0));
+  } else if (w.verdict == WindowVerdict::kChanged && static_mass) {
+    prior = carried_prior(static_mass->mass_change_std_kg);
+    prior.mass_kg += static_mass->mass_change_kg;
+    reason = StatusReason::kLoadChanged;
+  } else if (static_mass) {  // a first window (no reference was restored)
+    on_static_mass(*static_mass, result);
+    return;
+  } else {
+    // Another grade: the window cannot be compared with the reference; its own static mass is
+    // today's, and it becomes the reference.
+    prior = static_init_.static_mass_for(w.deflection_m, w.deflection_std_m).prior;
+    reason = StatusReason::kStaticInitialised;
+    static_init_.restore_reference(w.deflection_m, w.deflection_std_m, w.grade_accel_mps2);
+  }
+  if (w.verdict != WindowVerdict::kUnchanged) {
+    has_reference_ = true;
+    reference_deflection_m_ = w.deflection_m;
+    reference_deflection_std_m_ = w.deflection_std_m;
+    reference_grade_accel_mps2_ = w.grade_accel_mps2;
+  }
+  restart(prior, reason);
+  result->reinitialised = true;
+  result->estimate_changed = true;
+}
+
 StepResult Pipeline::step(const Sample& sample) {
   StepResult result;
 
-  if (const auto static_mass = static_init_.step(sample)) {
-    // Every reported window became the static initialiser's reference (kept for snapshots).
-    has_reference_ = true;
-    reference_deflection_m_ = static_mass->deflection_m;
-    reference_deflection_std_m_ = static_mass->deflection_std_m;
-    reference_grade_accel_mps2_ = static_mass->grade_accel_mps2;
-    // The first standstill after driving on the empty-mass prior does not throw away what the
-    // events taught. A load change shifts the belief by the added mass (with the payload
-    // prior's uncertainty) rather than forgetting what the drive taught about the vehicle.
-    const RegressorState state = regressor_->state();
-    const bool events_used = has_prior_ && state.pairs_used > 0;
-    if (static_mass->load_changed && events_used) {
-      MassPrior shifted = static_mass->prior;
-      shifted.mass_kg = state.mass_kg + static_mass->mass_change_kg;
-      shifted.mass_std_kg = std::hypot(state.mass_std_kg, static_mass->mass_change_std_kg);
-      restart(shifted, StatusReason::kLoadChanged);
-      result.reinitialised = true;
-      result.estimate_changed = true;
-    } else if (static_mass->load_changed || !events_used) {
-      restart(static_mass->prior, static_mass->load_changed ? StatusReason::kLoadChanged
-                                                            : StatusReason::kStaticInitialised);
-      result.reinitialised = true;
-      result.estimate_changed = true;
-    }
+  if (restore_pending_) begin_after_restore(sample, &result);
+  const std::optional<StaticMass> static_mass = static_init_.step(sample);
+  if (load_unchecked_ && static_init_.windows() != windows_seen_) {
+    check_restored_load(static_mass, &result);
+  } else if (static_mass) {
+    on_static_mass(*static_mass, &result);
+  }
+  windows_seen_ = static_init_.windows();
+  if (load_unchecked_ && sample.has(Input::kSpeed) &&
+      std::abs(sample.speed_mps) > params_.estimator.static_init.standstill_speed_mps) {
+    // Driving off before any window: the wide prior stays, and the next window, of whatever
+    // load the drive has been measuring, becomes the reference.
+    load_unchecked_ = false;
+    static_init_.forget_reference();
   }
   if (!has_prior_ && !params_.suspension.carries_load()) {
     restart(static_init_.no_static_prior(), StatusReason::kNoLoadSensor);
@@ -274,6 +349,7 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.reference_grade_accel_mps2 = reference_grade_accel_mps2_;
   s.blocks[0] = supervisor_.counters(Block::kLongitudinal);
   s.blocks[1] = supervisor_.counters(Block::kLateral);
+  s.time_us = estimate_.time_us;
   return s;
 }
 
@@ -338,6 +414,11 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   has_prior_ = true;
   prior_reason_ = StatusReason::kRestored;
   prior_ = prior;
+  restore_pending_ = true;
+  restored_time_us_ = s.time_us;
+  carried_ = belief_state();
+  load_unchecked_ = false;
+  windows_seen_ = static_init_.windows();
 
   const RegressorState state = regressor_->state();
   has_plausible_ = false;
@@ -387,12 +468,17 @@ void Pipeline::refresh_belief() {
   if (estimate_.invalid_inputs != 0) {
     estimate_.status = EstimateStatus::kDegraded;
     estimate_.reason = StatusReason::kInputsInvalid;
+  } else if (load_unchecked_) {
+    estimate_.status = EstimateStatus::kConverging;
+    estimate_.reason = StatusReason::kLoadUnchecked;
   } else if (provisional) {
     estimate_.status = EstimateStatus::kConverging;
     estimate_.reason = StatusReason::kLagProvisional;
   } else if (state.pairs_used == 0) {
-    const bool static_prior = prior_reason_ != StatusReason::kNoStaticPrior &&
-                              prior_reason_ != StatusReason::kNoLoadSensor;
+    // Only a suspension that reads the load gives a static mass (a restored belief of a car
+    // without one is a prior, not a reading).
+    const bool static_prior =
+        params_.suspension.carries_load() && prior_reason_ != StatusReason::kNoStaticPrior;
     estimate_.status = static_prior ? EstimateStatus::kStaticOnly : EstimateStatus::kInitialising;
     estimate_.reason = prior_reason_;
   } else if (estimate_.plausible && load_monitor_.suspects(belief_before_stop_)) {
@@ -400,10 +486,13 @@ void Pipeline::refresh_belief() {
     estimate_.status = EstimateStatus::kConverging;
     estimate_.reason = StatusReason::kLoadChangeSuspected;
   } else {
-    // Converged: more driving would not narrow it (the regression's part is small).
+    // Converged: more driving would not narrow it (the regression's part is small), and no
+    // stop since may have changed the load unseen (without a load sensor, the load monitor's
+    // challenger has had the pairs it needs to tell).
     const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);
     const bool narrow =
-        half_width < params_.estimator.converged_ci_halfwidth_fraction * std::abs(state.mass_kg);
+        half_width < params_.estimator.converged_ci_halfwidth_fraction * std::abs(state.mass_kg) &&
+        !load_monitor_.undecided();
     estimate_.status = narrow ? EstimateStatus::kConverged : EstimateStatus::kConverging;
     estimate_.reason = narrow ? StatusReason::kIntervalNarrow : StatusReason::kRefining;
   }

@@ -170,6 +170,8 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
   restart_window();
   if (spread > params_.max_deflection_std_m) return std::nullopt;  // not settled: try again
 
+  ++windows_;
+  last_window_ = StandstillWindow{WindowVerdict::kFirst, sample.time_us, mean, spread, grade, 0.0};
   if (!reference_) {
     reference_ = Reference{mean, spread, grade};
     StaticMass out = static_mass_for(mean, spread);
@@ -180,6 +182,7 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
   // Another slope shifts load between the axles: not comparable (NaN compares false: a grade
   // that is unknown on either side does not block the comparison).
   if (std::abs(grade - reference_->grade_accel_mps2) > params_.max_grade_change_mps2) {
+    last_window_.verdict = WindowVerdict::kOtherGrade;
     return std::nullopt;
   }
   // The eq. (3) mass change between the windows against the larger of the floors and the
@@ -192,8 +195,13 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
   const double threshold_kg = std::max({params_.min_load_change_kg,
                                         params_.min_load_change_fraction * vehicle_.empty_mass_kg,
                                         params_.load_change_sigma * noise_kg});
-  if (std::abs(eq3_change_kg) <= threshold_kg) return std::nullopt;
+  last_window_.threshold_kg = threshold_kg;
+  if (std::abs(eq3_change_kg) <= threshold_kg) {
+    last_window_.verdict = WindowVerdict::kUnchanged;
+    return std::nullopt;
+  }
 
+  last_window_.verdict = WindowVerdict::kChanged;
   reference_ = Reference{mean, spread, grade};
   StaticMass out = static_mass_for(mean, spread);
   out.grade_accel_mps2 = grade;

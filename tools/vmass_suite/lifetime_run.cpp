@@ -141,7 +141,9 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
   if (!sim::parse_vehicle_id(spec.vehicle_id, &vehicle, &out.error)) return out;
   const std::vector<Variant> all = variants(spec, vehicle, work_dir);
   for (const Variant& v : all) std::filesystem::remove(v.state_path);
-  for (const sim::LifetimeDrive& drive : sim::plan_lifetime(vehicle, spec.drives, spec.life)) {
+  const std::vector<sim::LifetimeDrive> plan =
+      spec.plan.empty() ? sim::plan_lifetime(vehicle, spec.drives, spec.life) : spec.plan;
+  for (const sim::LifetimeDrive& drive : plan) {
     sim::PopulationRun run;
     if (auto m = sim::make_population_run(vehicle, drive.scenario, drive.seed, spec.realism, &run,
                                           &drive.payload);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "vmass/sim/datasheet_config.hpp"
+#include "vmass/sim/lifetime.hpp"
 #include "vmass/sim/realism.hpp"
 
 namespace vmass::suite {
@@ -26,6 +27,8 @@ struct LifetimeSpec {
   std::string vehicle_id;
   std::uint64_t life = 1;  ///< which life (other loads, other drives)
   int drives = 10;
+  /// Empty: sim::plan_lifetime(vehicle, drives, life); else these drives (a test's own life).
+  std::vector<sim::LifetimeDrive> plan;
   std::vector<sim::Knowledge> knowledge = {sim::Knowledge::kKnownScale,
                                            sim::Knowledge::kDatasheetScale};
   std::vector<std::string> estimators = {"bayes"};  ///< rls and/or bayes

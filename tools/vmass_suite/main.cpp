@@ -7,8 +7,9 @@
 //               [--realism all|none|...] [--estimator-yaml FILE] [--jobs J] --out FILE.jsonl
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
-//   vmass-suite --lifetime DRIVES [--vehicles N] [--held-out] [--lives K] [--knowledge ...]
-//               [--estimators bayes,rls] [--keep-dir DIR] [--jobs J] --out FILE.jsonl
+//   vmass-suite --lifetime DRIVES [--vehicles N | --vehicle-ids ID,...] [--held-out] [--lives K]
+//               [--knowledge ...] [--estimators bayes,rls] [--keep-dir DIR] [--series-dir DIR]
+//               [--jobs J] --out FILE.jsonl
 //   vmass-suite --list-scenarios | --population-hash
 //
 // --lifetime drives each vehicle DRIVES drives in a row through the daemon's state file (loads
@@ -82,7 +83,7 @@ struct Options {
   int jobs = 0;
   int lifetime_drives = 0;  ///< > 0: the lifetime mode
   int lives = 1;
-  std::string keep_dir;
+  std::string keep_dir, vehicle_ids;
 };
 
 bool parse_knowledge(const std::string& text, std::vector<vmass::sim::Knowledge>* out) {
@@ -222,11 +223,18 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
   if (!realism) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
   base.realism = *realism;
   base.realism_label = o.realism;
-  const std::uint64_t first = o.held_out ? vmass::sim::kHeldOutFirstSeed : o.first_seed;
-  for (const auto& v : vmass::sim::draw_population(o.vehicles, first)) {
+  std::vector<std::string> ids = split(o.vehicle_ids);
+  if (ids.empty()) {
+    const std::uint64_t first = o.held_out ? vmass::sim::kHeldOutFirstSeed : o.first_seed;
+    for (const auto& v : vmass::sim::draw_population(o.vehicles, first)) ids.push_back(v.id);
+  }
+  for (const std::string& id : ids) {
+    vmass::sim::DrawnVehicle probe;
+    std::string error;
+    if (!vmass::sim::parse_vehicle_id(id, &probe, &error)) return "--vehicle-ids: " + error;
     for (int life = 1; life <= o.lives; ++life) {
       vmass::suite::LifetimeSpec spec = base;
-      spec.vehicle_id = v.id;
+      spec.vehicle_id = id;
       spec.life = static_cast<std::uint64_t>(life);
       specs->push_back(spec);
     }
@@ -330,6 +338,8 @@ int main(int argc, char** argv) {
                  "drives per life: each vehicle drive after drive through the state file")
       ->check(CLI::Range(1, 1000));
   app.add_option("--lives", o.lives, "lives per vehicle (--lifetime)")->check(CLI::Range(1, 100));
+  app.add_option("--vehicle-ids", o.vehicle_ids,
+                 "--lifetime: these vehicles (CLASS-SEED,...) instead of the population's");
   app.add_option("--keep-dir", o.keep_dir,
                  "--lifetime: keep each variant's logs, config and state files here");
   app.add_option("--jobs", o.jobs, "threads (default: all cores)");

@@ -46,6 +46,9 @@ enum class StatusReason : std::uint8_t {
   kLagProvisional,            ///< converging: the driveline lag is not identified yet; the
                               ///< estimate takes the held pairs at the best fit so far, its
                               ///< interval what the lag's uncertainty does to the mass
+  kLoadUnchecked,             ///< restored after the vehicle was off: the load may have changed
+                              ///< while parked; until the first standstill re-checks it, the
+                              ///< interval holds any load the vehicle can carry
 };
 
 std::string_view status_name(EstimateStatus s);

@@ -70,6 +70,9 @@ class LoadChangeMonitor {
   /// True when the challenger's 95 % interval excludes `main`'s mass (see the header): a change
   /// is likely but not yet decided.
   bool suspects(const RegressorState& main) const;
+  /// True while a challenger runs without the min_pairs it needs to decide: the load may have
+  /// changed at the last stop and the drive has not yet shown either way.
+  bool undecided() const;
   const MassRegressor& challenger() const;
   const RlsEstimator& challenger_rls() const { return rls_; }
   const BayesEstimator& challenger_bayes() const { return bayes_; }

@@ -13,11 +13,23 @@
 //
 // snapshot() / restore() carry the estimate across a restart of the daemon (persistence): the
 // regressor's belief (RLS theta and P, or the NIG posterior), the prior that started it, the
-// reference standstill deflection and the block counters. After restore() the first completed
-// standstill window is compared with the restored reference deflection exactly like any later
-// window: when the load changed meanwhile, the static initialisation restarts the regressor.
+// reference standstill deflection, the block counters and the time the snapshot was taken.
 // The open Bayes batch is saved closed into the posterior (as the estimate publishes it); the
 // extractors' short histories and the pairs held until the lag is identified are not carried over.
+//
+// The first step after restore() tells a restart within a drive from the vehicle's next drive:
+//   - within a drive (its sample at most load_change.min_stop_s after the snapshot): the belief
+//     goes on as it was; no load can have changed;
+//   - a power cycle (longer, or a clock that went back): the load may have changed while parked,
+//     and the pairs of yesterday's load are no evidence of today's. The belief becomes the prior
+//     of a new load, its mass spread by what the vehicle can carry (the no-static prior's
+//     spread), reason load_unchecked. A vehicle whose suspension reads the load re-checks it at
+//     the first settled standstill window against the saved reference deflection: the same load
+//     (within the window's threshold) -> the carried belief, spread only by a change that small;
+//     another load -> the carried belief shifted by the change (load_changed); another grade,
+//     where the two cannot be compared -> that window's static prior. Driving off before any
+//     window keeps the wide prior and makes the next window the new reference.
+// So a belief never grows more confident from drive to drive than one drive makes it.
 //
 // Pure: no threads, clocks, files or logging. Not thread-safe. Allocates only in the
 // constructor.
@@ -25,6 +37,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "vmass/core/bayes_estimator.hpp"
@@ -110,6 +123,7 @@ struct PipelineSnapshot {
   double reference_deflection_std_m = 0.0;
   double reference_grade_accel_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< NaN: unknown
   std::array<BlockCounters, kBlockCount> blocks{};
+  TimeUs time_us = 0;  ///< the time of the last step before it was taken
 };
 
 class Pipeline {
@@ -136,11 +150,20 @@ class Pipeline {
   /// nothing when it does not fit: another regressor type, no prior, no reference deflection
   /// (the load could not be checked), a non-finite value, or a belief the regressor refuses
   /// (see RlsEstimator::restore, BayesEstimator::restore). On success the estimate reads
-  /// reason `restored` until the next step refreshes it.
+  /// reason `restored` until the next step, which decides between a restart within a drive and
+  /// a power cycle (see the header).
   bool restore(const PipelineSnapshot& snapshot);
 
  private:
   void restart(const MassPrior& prior, StatusReason reason);
+  /// A completed standstill window's mass (a first window or a load change).
+  void on_static_mass(const StaticMass& static_mass, StepResult* result);
+  /// The first step after restore(): a power cycle makes the carried belief a wide prior.
+  void begin_after_restore(const Sample& sample, StepResult* result);
+  /// After a power cycle, the first settled window re-checks the load (see the header).
+  void check_restored_load(const std::optional<StaticMass>& static_mass, StepResult* result);
+  /// The carried belief as a prior, its mass spread by `change_std_kg` more.
+  MassPrior carried_prior(double change_std_kg) const;
   /// The load-change monitor's challenger becomes the belief (a load change seen in motion).
   void adopt_challenger();
   /// Offer the tick's extractions to the supervisor.
@@ -192,6 +215,11 @@ class Pipeline {
   double reference_deflection_m_ = 0.0;
   double reference_deflection_std_m_ = 0.0;
   double reference_grade_accel_mps2_ = std::numeric_limits<double>::quiet_NaN();
+  bool restore_pending_ = false;  ///< restore() happened, no step since
+  TimeUs restored_time_us_ = 0;   ///< the snapshot's time
+  RegressorState carried_;        ///< the belief restore() brought
+  bool load_unchecked_ = false;   ///< power cycle with a load sensor: no window re-checked it yet
+  long windows_seen_ = 0;         ///< StaticInitializer::windows() at the last step
   Estimate estimate_;
 };
 
