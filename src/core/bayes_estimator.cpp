@@ -6,7 +6,6 @@
 
 #include <Eigen/Cholesky>
 #include <boost/math/distributions/normal.hpp>
-#include <boost/math/distributions/students_t.hpp>
 
 #include "vmass/core/param_check.hpp"
 
@@ -109,7 +108,8 @@ NigPosterior BayesEstimator::conjugate_update(const NigPosterior& prior, const S
 BayesEstimator::BayesEstimator(const BayesParams& params)
     : params_(params),
       z_q_(boost::math::quantile(boost::math::normal_distribution<double, NoThrowPolicy>(0.0, 1.0),
-                                 0.5 * (1.0 + params.credible_level))) {
+                                 0.5 * (1.0 + params.credible_level))),
+      quantiles_(std::make_shared<StudentTQuantiles>(0.5 * (1.0 + params.credible_level))) {
   clear_pending();
   refresh();
 }
@@ -138,12 +138,7 @@ void BayesEstimator::clear_pending() {
 }
 
 void BayesEstimator::refresh() {
-  const double q = 0.5 * (1.0 + params_.credible_level);
-  const double dof = 2.0 * posterior_.shape;
-  double t = std::numeric_limits<double>::quiet_NaN();
-  if (std::isfinite(dof) && dof > 0.0) {
-    t = boost::math::quantile(boost::math::students_t_distribution<double, NoThrowPolicy>(dof), q);
-  }
+  const double t = quantiles_->at(2.0 * posterior_.shape);
   // Only reachable with invalid parameters or a posterior Boost cannot handle: the normal
   // quantile is the t quantile's limit.
   t_q_ = std::isfinite(t) && t > 0.0 ? t : z_q_;

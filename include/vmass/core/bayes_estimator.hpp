@@ -45,14 +45,20 @@
 // non-finite field or weight <= 0; a batch whose posterior would not be finite is dropped.
 // predict() of such a pair returns an infinite variance.
 //
-// Not thread-safe; no allocation after construction.
+// The t quantile is looked up in a StudentTQuantiles that copies of the estimator share (the
+// pipeline closes the open batch in a copy every tick): each dof is evaluated once.
+//
+// Not thread-safe (copies share the quantile memo: keep them on one thread); no allocation
+// after construction (which allocates the memo).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include <Eigen/Core>
 
 #include "vmass/core/mass_regressor.hpp"
+#include "vmass/core/student_t_quantiles.hpp"
 
 namespace vmass {
 
@@ -89,6 +95,8 @@ class BayesEstimator final : public MassRegressor {
   std::string_view name() const override { return "bayes"; }
 
   const NigPosterior& posterior() const { return posterior_; }
+  /// The quantile memo this estimator and its copies share (its counters, for tests).
+  const StudentTQuantiles& quantiles() const { return *quantiles_; }
   int pending_pairs() const { return pending_count_; }
   /// Restore a saved posterior (persistence); the open batch starts empty. The posterior must be
   /// finite with V symmetric positive definite, a > 0 and b > 0; otherwise returns false and
@@ -129,6 +137,7 @@ class BayesEstimator final : public MassRegressor {
   long pairs_used_ = 0;
   double z_q_ = 0.0;  ///< standard normal quantile at (1 + credible_level) / 2
   double t_q_ = 0.0;  ///< Student-t (2 a dof) quantile at the same probability
+  std::shared_ptr<StudentTQuantiles> quantiles_;  ///< shared by copies
 };
 
 }  // namespace vmass

@@ -143,6 +143,12 @@ class Pipeline {
   /// The longitudinal block (its identified lag and measured noise, for the status).
   const LongitudinalExtractor& longitudinal() const { return longitudinal_; }
   const PipelineParams& params() const { return params_; }
+  /// Student-t quantiles evaluated so far (the belief's and the load monitor's; a work counter
+  /// that tests bound per tick: the evaluation is the costliest call a tick can make).
+  std::int64_t quantile_evaluations() const {
+    return bayes_.quantiles().evaluations() +
+           load_monitor_.challenger_bayes().quantiles().evaluations();
+  }
 
   /// The current state, for persistence. Allocates nothing.
   PipelineSnapshot snapshot() const;
