@@ -172,11 +172,18 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
 
   ++windows_;
   last_window_ = StandstillWindow{WindowVerdict::kFirst, sample.time_us, mean, spread, grade, 0.0};
+  return judge_window();
+}
+
+std::optional<StaticMass> StaticInitializer::judge_window() {
+  const double mean = last_window_.deflection_m;
+  const double spread = last_window_.deflection_std_m;
+  const double grade = last_window_.grade_accel_mps2;
   if (!reference_) {
     reference_ = Reference{mean, spread, grade};
     StaticMass out = static_mass_for(mean, spread);
     out.grade_accel_mps2 = grade;
-    out.time_us = sample.time_us;
+    out.time_us = last_window_.time_us;
     return out;
   }
   // Another slope shifts load between the axles: not comparable (NaN compares false: a grade
@@ -205,7 +212,7 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
   reference_ = Reference{mean, spread, grade};
   StaticMass out = static_mass_for(mean, spread);
   out.grade_accel_mps2 = grade;
-  out.time_us = sample.time_us;
+  out.time_us = last_window_.time_us;
   out.load_changed = true;
   out.mass_change_kg = factor_mean_ * eq3_change_kg;
   out.mass_change_std_kg = std::hypot(base_std_kg(), factor_std_ * eq3_change_kg);

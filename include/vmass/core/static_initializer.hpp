@@ -129,6 +129,9 @@ class StaticInitializer {
 
  private:
   void restart_window();
+  /// The settled window in last_window_ against the reference: its verdict, and the mass when
+  /// it is new.
+  std::optional<StaticMass> judge_window();
 
   double base_std_kg() const;
 
