@@ -7,6 +7,7 @@
 #
 #   scripts/accuracy-suite.sh                     (from anywhere)
 #   VEHICLES=7 SEEDS=1 scripts/accuracy-suite.sh  (a quick look; the report says what it ran)
+#   DRIVES=10 LIVES=1: the lifetime mode's drives per life and lives per vehicle
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
@@ -30,14 +31,21 @@ start=$(date +%s)
   --out "$out/held_out.jsonl"
 "$bin/vmass-suite" --ablation auto --scenarios paper_exp2_eps1,urban,highway --seeds "$seeds" \
   --estimators rls,bayes,paper_lp --knowledge known_scale --jobs "$jobs" --out "$out/ablation.jsonl"
+# A vehicle's Nth drive: each vehicle 10 drives in a row through the daemon's state file, loads
+# changed while parked, beside the same drives fresh (docs/accuracy.md, "lifetime mode").
+"$bin/vmass-suite" --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" --vehicles "$vehicles" \
+  --jobs "$jobs" --out "$out/lifetime.jsonl"
+"$bin/vmass-suite" --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" --held-out \
+  --vehicles "$held_out" --jobs "$jobs" --out "$out/lifetime_held_out.jsonl"
 "$bin/vmass-suite" --runs nominal:paper_exp2_eps3:1,nominal:paper_exp1_eps1:1,suv-18:urban:1,suv-4:heavy_rear_load:1 \
   --knowledge known_scale --series-dir "$out/series" --jobs "$jobs" --out "$out/series.jsonl"
 
 rm -rf docs/accuracy
 /usr/bin/python3 "$bin/vmass-accuracy-report" --population "$out/population.jsonl" \
   --held-out "$out/held_out.jsonl" --ablation "$out/ablation.jsonl" \
+  --lifetime "$out/lifetime.jsonl" --lifetime-held-out "$out/lifetime_held_out.jsonl" \
   --series-dir "$out/series" --plots-dir docs/accuracy --out docs/accuracy.md \
-  --command "VEHICLES=$vehicles HELD_OUT=$held_out SEEDS=$seeds scripts/accuracy-suite.sh" \
+  --command "VEHICLES=$vehicles HELD_OUT=$held_out SEEDS=$seeds DRIVES=${DRIVES:-10} LIVES=${LIVES:-1} scripts/accuracy-suite.sh" \
   --commit "$commit" \
   --population-hash "$("$bin/vmass-suite" --population-hash)" \
   --seconds "$(( $(date +%s) - start ))"

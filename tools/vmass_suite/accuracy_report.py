@@ -254,6 +254,27 @@ def lifetime_table(rows, knowledge, out):
                 f"{fmt(sl['conv_bad'], 0)} / {fmt(sf['conv_bad'], 0)} | {restored}/{len(life)} |")
 
 
+def lifetime_summary(rows):
+    """Over drive indices 2.. (drive 1 is fresh either way), with and without the sensor: the
+    largest lifetime - fresh difference of the median |final| and of the coverage at 20 s, 60 s
+    and the end, and the converged-then-outside share of each mode."""
+    by = group(rows, "deflection_sensor", "drive", "mode")
+    worst = {"median": 0.0, "cov20": 0.0, "cov60": 0.0, "covend": 0.0}
+    for (sensor, drive, mode), life in by.items():
+        if mode != "lifetime" or drive == 1:
+            continue
+        sl, sf = cell_stats(life), cell_stats(by.get((sensor, drive, "fresh"), []))
+        for k in worst:
+            if sl[k] is not None and sf[k] is not None and abs(sl[k] - sf[k]) > abs(worst[k]):
+                worst[k] = sl[k] - sf[k]
+    conv = {m: cell_stats([r for r in rows if r.get("mode") == m])["conv_bad"]
+            for m in ("lifetime", "fresh")}
+    return (f"Largest lifetime - fresh difference over drives 2..: median |final| "
+            f"{worst['median']:+.2f} points, covers at 20 s / 60 s / end {worst['cov20']:+.0f} / "
+            f"{worst['cov60']:+.0f} / {worst['covend']:+.0f} points; `converged` then >20 % outside: "
+            f"{fmt(conv['lifetime'], 1)} % of lifetime runs, {fmt(conv['fresh'], 1)} % fresh.\n")
+
+
 def lifetime_section(rows, title, out):
     lives = {(r["vehicle"], r.get("life")) for r in rows}
     drives = max((r["drive"] for r in rows), default=0)
@@ -265,6 +286,7 @@ def lifetime_section(rows, title, out):
             if not sub:
                 continue
             out.append(f"### {est}, {k.replace('_', ' ')}\n")
+            out.append(lifetime_summary(sub))
             lifetime_table(sub, k, out)
             out.append("")
 
