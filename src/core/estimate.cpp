@@ -75,8 +75,8 @@ std::string Estimate::describe_reason() const {
   }
   if (reason == StatusReason::kLoadUnchecked) {
     text +=
-        ": restored after the vehicle was off, when the load may have changed; the first "
-        "standstill re-checks it, until then the interval holds any load";
+        ": restored after the vehicle was off, when the load may have changed; the mass "
+        "starts afresh at the first standstill (or with the drive)";
   }
   return text;
 }

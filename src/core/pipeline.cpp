@@ -105,6 +105,7 @@ void Pipeline::reset_extractors(double reference_mass_kg) {
 }
 
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
+  load_unchecked_ = false;
   regressor_->reset(prior);
   supervisor_.on_regressor_reset();
   reset_extractors(prior.mass_kg);
@@ -207,82 +208,31 @@ void Pipeline::on_static_mass(const StaticMass& static_mass, StepResult* result)
   result->estimate_changed = true;
 }
 
-MassPrior Pipeline::carried_prior(double change_std_kg) const {
-  MassPrior p;
-  p.mass_kg = carried_.mass_kg;
-  p.mass_std_kg = std::hypot(carried_.mass_std_kg, change_std_kg);
-  // mu (what the model leaves out of the resistances) moves with the road, the tyres and the
-  // weather from drive to drive: its prior spread again.
-  p.mu_n = carried_.mu_n;
-  p.mu_std_n = std::hypot(carried_.mu_std_n, params_.estimator.static_init.mu_prior_std_n);
-  return p;
-}
-
-void Pipeline::begin_after_restore(const Sample& sample, StepResult* result) {
+void Pipeline::begin_after_restore(const Sample& sample) {
   restore_pending_ = false;
   const double off_s = to_seconds(sample.time_us - restored_time_us_);
   if (off_s >= 0.0 && off_s <= params_.estimator.load_change.min_stop_s) return;  // same drive
-  // A power cycle: any load the vehicle carries, around the one it carried.
-  restart(carried_prior(static_init_.no_static_prior().mass_std_kg), StatusReason::kRestored);
-  load_unchecked_ = params_.suspension.carries_load();
-  result->reinitialised = true;
-  result->estimate_changed = true;
-}
-
-void Pipeline::check_restored_load(const std::optional<StaticMass>& static_mass,
-                                   StepResult* result) {
-  load_unchecked_ = false;
-  const StandstillWindow& w = static_init_.last_window();
-  MassPrior prior;
-  StatusReason reason = StatusReason::kRestored;
-  if (w.verdict == WindowVerdict::kUnchanged) {
-    // An unseen change of up to the window's threshold (eq. 3 kg, uniform), in kg of payload
-    // wherever it sits: E[(U / q)^2] = E[U^2] E[1 / q^2].
-    const double factor =
-        std::hypot(static_init_.payload_factor_mean(), static_init_.payload_factor_std());
-    prior = carried_prior(factor * w.threshold_kg / std::sqrt(3.0));
-  } else if (w.verdict == WindowVerdict::kChanged && static_mass) {
-    prior = carried_prior(static_mass->mass_change_std_kg);
-    prior.mass_kg += static_mass->mass_change_kg;
-    reason = StatusReason::kLoadChanged;
-  } else if (static_mass) {  // a first window (no reference was restored)
-    on_static_mass(*static_mass, result);
-    return;
-  } else {
-    // Another grade: the window cannot be compared with the reference; its own static mass is
-    // today's, and it becomes the reference.
-    prior = static_init_.static_mass_for(w.deflection_m, w.deflection_std_m).prior;
-    reason = StatusReason::kStaticInitialised;
-    static_init_.restore_reference(w.deflection_m, w.deflection_std_m, w.grade_accel_mps2);
-  }
-  if (w.verdict != WindowVerdict::kUnchanged) {
-    has_reference_ = true;
-    reference_deflection_m_ = w.deflection_m;
-    reference_deflection_std_m_ = w.deflection_std_m;
-    reference_grade_accel_mps2_ = w.grade_accel_mps2;
-  }
-  restart(prior, reason);
-  result->reinitialised = true;
-  result->estimate_changed = true;
+  // A power cycle: the load may have changed while parked, and the belief's pairs and its
+  // reference deflection are of the load it had then. The mass starts afresh, as on a first
+  // drive: at the first standstill window (a car that reads its load) or with the drive (one
+  // that does not). Only the counters carry over.
+  has_prior_ = false;
+  has_plausible_ = false;
+  prior_reason_ = StatusReason::kWaitingForStandstill;
+  static_init_.forget_reference();
+  has_reference_ = false;
+  const std::array<BlockCounters, kBlockCount> blocks = estimate_.blocks;
+  estimate_ = Estimate{};
+  estimate_.blocks = blocks;
+  load_unchecked_ = true;
 }
 
 StepResult Pipeline::step(const Sample& sample) {
   StepResult result;
 
-  if (restore_pending_) begin_after_restore(sample, &result);
-  const std::optional<StaticMass> static_mass = static_init_.step(sample);
-  if (load_unchecked_ && static_init_.windows() != windows_seen_) {
-    check_restored_load(static_mass, &result);
-  } else if (static_mass) {
+  if (restore_pending_) begin_after_restore(sample);
+  if (const std::optional<StaticMass> static_mass = static_init_.step(sample)) {
     on_static_mass(*static_mass, &result);
-  }
-  windows_seen_ = static_init_.windows();
-  if (load_unchecked_ && sample.has(Input::kSpeed) &&
-      std::abs(sample.speed_mps) > params_.estimator.static_init.standstill_speed_mps) {
-    // Driving off before any window: the wide prior stays, and the next window, of whatever
-    // load the drive has been measuring, becomes the reference.
-    load_unchecked_ = false;
-    static_init_.forget_reference();
   }
   if (!has_prior_ && !params_.suspension.carries_load()) {
     restart(static_init_.no_static_prior(), StatusReason::kNoLoadSensor);
@@ -355,11 +305,11 @@ PipelineSnapshot Pipeline::snapshot() const {
 
 bool Pipeline::restore(const PipelineSnapshot& s) {
   // A car whose suspension reads the load re-checks it against the saved reference deflection
-  // at its next standstill; without one that check is impossible, and that standstill's static
-  // prior is the better start. A car without a load sensor never has a reference: its saved
-  // belief is restored, and the load monitor treats the time switched off as a long stop.
+  // at its next standstill; without a reference (none was measured at this load) that
+  // standstill's static prior is the start after a power cycle. A car without a load sensor
+  // never has a reference; the load monitor treats the time switched off as a long stop.
   const bool carries_load = params_.suspension.carries_load();
-  if (s.type != params_.estimator.type || !s.has_prior || (carries_load && !s.has_reference)) {
+  if (s.type != params_.estimator.type || !s.has_prior) {
     return false;
   }
   const MassPrior& prior = s.prior;
@@ -416,9 +366,7 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   prior_ = prior;
   restore_pending_ = true;
   restored_time_us_ = s.time_us;
-  carried_ = belief_state();
   load_unchecked_ = false;
-  windows_seen_ = static_init_.windows();
 
   const RegressorState state = regressor_->state();
   has_plausible_ = false;
@@ -448,7 +396,8 @@ void Pipeline::refresh_estimate(const Sample& sample) {
 void Pipeline::refresh_belief() {
   if (!has_prior_) {
     estimate_.status = EstimateStatus::kInitialising;
-    estimate_.reason = StatusReason::kWaitingForStandstill;
+    estimate_.reason =
+        load_unchecked_ ? StatusReason::kLoadUnchecked : StatusReason::kWaitingForStandstill;
     if (estimate_.invalid_inputs != 0) {
       estimate_.status = EstimateStatus::kDegraded;
       estimate_.reason = StatusReason::kInputsInvalid;
@@ -468,9 +417,6 @@ void Pipeline::refresh_belief() {
   if (estimate_.invalid_inputs != 0) {
     estimate_.status = EstimateStatus::kDegraded;
     estimate_.reason = StatusReason::kInputsInvalid;
-  } else if (load_unchecked_) {
-    estimate_.status = EstimateStatus::kConverging;
-    estimate_.reason = StatusReason::kLoadUnchecked;
   } else if (provisional) {
     estimate_.status = EstimateStatus::kConverging;
     estimate_.reason = StatusReason::kLagProvisional;

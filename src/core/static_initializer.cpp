@@ -169,27 +169,21 @@ std::optional<StaticMass> StaticInitializer::step(const Sample& sample) {
                            : std::numeric_limits<double>::quiet_NaN();
   restart_window();
   if (spread > params_.max_deflection_std_m) return std::nullopt;  // not settled: try again
-
-  ++windows_;
-  last_window_ = StandstillWindow{WindowVerdict::kFirst, sample.time_us, mean, spread, grade, 0.0};
-  return judge_window();
+  return judge_window(sample.time_us, mean, spread, grade);
 }
 
-std::optional<StaticMass> StaticInitializer::judge_window() {
-  const double mean = last_window_.deflection_m;
-  const double spread = last_window_.deflection_std_m;
-  const double grade = last_window_.grade_accel_mps2;
+std::optional<StaticMass> StaticInitializer::judge_window(TimeUs time_us, double mean,
+                                                          double spread, double grade) {
   if (!reference_) {
     reference_ = Reference{mean, spread, grade};
     StaticMass out = static_mass_for(mean, spread);
     out.grade_accel_mps2 = grade;
-    out.time_us = last_window_.time_us;
+    out.time_us = time_us;
     return out;
   }
   // Another slope shifts load between the axles: not comparable (NaN compares false: a grade
   // that is unknown on either side does not block the comparison).
   if (std::abs(grade - reference_->grade_accel_mps2) > params_.max_grade_change_mps2) {
-    last_window_.verdict = WindowVerdict::kOtherGrade;
     return std::nullopt;
   }
   // The eq. (3) mass change between the windows against the larger of the floors and the
@@ -202,17 +196,12 @@ std::optional<StaticMass> StaticInitializer::judge_window() {
   const double threshold_kg = std::max({params_.min_load_change_kg,
                                         params_.min_load_change_fraction * vehicle_.empty_mass_kg,
                                         params_.load_change_sigma * noise_kg});
-  last_window_.threshold_kg = threshold_kg;
-  if (std::abs(eq3_change_kg) <= threshold_kg) {
-    last_window_.verdict = WindowVerdict::kUnchanged;
-    return std::nullopt;
-  }
+  if (std::abs(eq3_change_kg) <= threshold_kg) return std::nullopt;
 
-  last_window_.verdict = WindowVerdict::kChanged;
   reference_ = Reference{mean, spread, grade};
   StaticMass out = static_mass_for(mean, spread);
   out.grade_accel_mps2 = grade;
-  out.time_us = last_window_.time_us;
+  out.time_us = time_us;
   out.load_changed = true;
   out.mass_change_kg = factor_mean_ * eq3_change_kg;
   out.mass_change_std_kg = std::hypot(base_std_kg(), factor_std_ * eq3_change_kg);

@@ -58,10 +58,14 @@ class DaemonFaultTest : public test::DaemonProcessTest {
       const service::StateLoad saved = service::load_state_file(state, fingerprint);
       EXPECT_EQ(saved.status, service::StateLoadStatus::kLoaded) << where << ": " << saved.error;
       const std::string log = read(run_name + ".log");
-      // Saved once it ran a tick: a signal between "vmassd running" and the first tick (seen
-      // under AddressSanitizer, whose start-up is slower) leaves the restored state as it was.
+      // Saved once it ran a tick with a mass: a signal between "vmassd running" and the first
+      // tick (seen under AddressSanitizer, whose start-up is slower) leaves the restored state
+      // as it was; so does one before the first standstill window of a run that restarted the
+      // drive from its start (the clock went back: a power cycle, after which the mass starts
+      // afresh and there is nothing new to save).
       const bool ticked = log.find("vmassd running") != std::string::npos &&
-                          log.find("; 0 ticks") == std::string::npos;
+                          log.find("; 0 ticks") == std::string::npos &&
+                          log.find("no mass yet") == std::string::npos;
       if (expected_rc == 0 && ticked) {
         EXPECT_NE(log.find("state saved"), std::string::npos) << where << "\n" << log;
       }

@@ -176,9 +176,6 @@ TEST(PipelineRestore, RefusesWhatDoesNotFitAndChangesNothing) {
   PipelineSnapshot other_type = good;
   other_type.type = RegressorType::kRls;
   EXPECT_FALSE(fresh.restore(other_type));
-  PipelineSnapshot no_reference = good;
-  no_reference.has_reference = false;
-  EXPECT_FALSE(fresh.restore(no_reference));
   PipelineSnapshot no_prior = good;
   no_prior.has_prior = false;
   EXPECT_FALSE(fresh.restore(no_prior));
@@ -190,6 +187,31 @@ TEST(PipelineRestore, RefusesWhatDoesNotFitAndChangesNothing) {
   EXPECT_FALSE(fresh.restore(indefinite));
   expect_same(fresh.snapshot(), before);
   EXPECT_FALSE(fresh.estimate().has_mass());
+}
+
+// A state saved before any settled standstill at its load (no reference deflection) is restored:
+// a restart within the drive goes on with it; after a power cycle the next standstill's static
+// mass is the start, as on a first drive.
+TEST(PipelineRestore, WithoutAReferenceTheNextDrivesStandstillGivesTheStart) {
+  const PipelineParams params = test_params("bayes");
+  Pipeline p(params);
+  drive(p, test::make_drive(test::DriveSpec{}));
+  PipelineSnapshot saved = p.snapshot();
+  saved.has_reference = false;
+
+  Pipeline next_day(params);
+  ASSERT_TRUE(next_day.restore(saved));
+  test::DriveSpec heavier;
+  heavier.mass_kg = 2100.0;
+  std::vector<Sample> samples = test::make_drive(heavier);
+  for (Sample& s : samples) s.time_us += 86'400'000'000;  // a day later
+  drive(next_day, samples);
+  Pipeline fresh(params);
+  drive(fresh, samples);
+  EXPECT_EQ(next_day.estimate().prior_reason, StatusReason::kStaticInitialised);
+  EXPECT_EQ(next_day.estimate().initial_mass_kg, fresh.estimate().initial_mass_kg);
+  EXPECT_EQ(next_day.estimate().mass_kg, fresh.estimate().mass_kg);
+  EXPECT_NEAR(next_day.estimate().mass_kg, heavier.mass_kg, 0.03 * heavier.mass_kg);
 }
 
 // ------------------------------------------------------------------------------ state file

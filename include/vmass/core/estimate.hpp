@@ -46,9 +46,9 @@ enum class StatusReason : std::uint8_t {
   kLagProvisional,            ///< converging: the driveline lag is not identified yet; the
                               ///< estimate takes the held pairs at the best fit so far, its
                               ///< interval what the lag's uncertainty does to the mass
-  kLoadUnchecked,             ///< restored after the vehicle was off: the load may have changed
-                              ///< while parked; until the first standstill re-checks it, the
-                              ///< interval holds any load the vehicle can carry
+  kLoadUnchecked,             ///< initialising: restored after the vehicle was off, when the
+                              ///< load may have changed; the mass starts afresh at the first
+                              ///< standstill (or with the drive, without a load sensor)
 };
 
 std::string_view status_name(EstimateStatus s);

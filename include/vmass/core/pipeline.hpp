@@ -21,14 +21,11 @@
 //   - within a drive (its sample at most load_change.min_stop_s after the snapshot): the belief
 //     goes on as it was; no load can have changed;
 //   - a power cycle (longer, or a clock that went back): the load may have changed while parked,
-//     and the pairs of yesterday's load are no evidence of today's. The belief becomes the prior
-//     of a new load, its mass spread by what the vehicle can carry (the no-static prior's
-//     spread), reason load_unchecked. A vehicle whose suspension reads the load re-checks it at
-//     the first settled standstill window against the saved reference deflection: the same load
-//     (within the window's threshold) -> the carried belief, spread only by a change that small;
-//     another load -> the carried belief shifted by the change (load_changed); another grade,
-//     where the two cannot be compared -> that window's static prior. Driving off before any
-//     window keeps the wide prior and makes the next window the new reference.
+//     and the pairs of yesterday's load are no evidence of today's, nor its reference deflection
+//     of today's load. The mass starts afresh, exactly as on a first drive (reason
+//     load_unchecked until the first standstill window or the drive gives it a prior); only the
+//     block counters carry over. What does carry over from drive to drive is what the load does
+//     not change: the vehicle's constants.
 // So a belief never grows more confident from drive to drive than one drive makes it.
 //
 // Pure: no threads, clocks, files or logging. Not thread-safe. Allocates only in the
@@ -37,7 +34,6 @@
 
 #include <array>
 #include <limits>
-#include <optional>
 #include <string>
 
 #include "vmass/core/bayes_estimator.hpp"
@@ -153,8 +149,8 @@ class Pipeline {
   /// The current state, for persistence. Allocates nothing.
   PipelineSnapshot snapshot() const;
   /// Resume from a snapshot of a pipeline with the same parameters. Returns false and changes
-  /// nothing when it does not fit: another regressor type, no prior, no reference deflection
-  /// (the load could not be checked), a non-finite value, or a belief the regressor refuses
+  /// nothing when it does not fit: another regressor type, no prior, a non-finite value, or a
+  /// belief the regressor refuses
   /// (see RlsEstimator::restore, BayesEstimator::restore). On success the estimate reads
   /// reason `restored` until the next step, which decides between a restart within a drive and
   /// a power cycle (see the header).
@@ -164,12 +160,8 @@ class Pipeline {
   void restart(const MassPrior& prior, StatusReason reason);
   /// A completed standstill window's mass (a first window or a load change).
   void on_static_mass(const StaticMass& static_mass, StepResult* result);
-  /// The first step after restore(): a power cycle makes the carried belief a wide prior.
-  void begin_after_restore(const Sample& sample, StepResult* result);
-  /// After a power cycle, the first settled window re-checks the load (see the header).
-  void check_restored_load(const std::optional<StaticMass>& static_mass, StepResult* result);
-  /// The carried belief as a prior, its mass spread by `change_std_kg` more.
-  MassPrior carried_prior(double change_std_kg) const;
+  /// The first step after restore(): after a power cycle the mass starts afresh.
+  void begin_after_restore(const Sample& sample);
   /// The load-change monitor's challenger becomes the belief (a load change seen in motion).
   void adopt_challenger();
   /// Offer the tick's extractions to the supervisor.
@@ -223,9 +215,7 @@ class Pipeline {
   double reference_grade_accel_mps2_ = std::numeric_limits<double>::quiet_NaN();
   bool restore_pending_ = false;  ///< restore() happened, no step since
   TimeUs restored_time_us_ = 0;   ///< the snapshot's time
-  RegressorState carried_;        ///< the belief restore() brought
-  bool load_unchecked_ = false;   ///< power cycle with a load sensor: no window re-checked it yet
-  long windows_seen_ = 0;         ///< StaticInitializer::windows() at the last step
+  bool load_unchecked_ = false;   ///< a power cycle after restore(), no prior since
   Estimate estimate_;
 };
 

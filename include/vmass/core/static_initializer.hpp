@@ -31,7 +31,6 @@
 // Pure: time comes from the samples. Not thread-safe; no allocation.
 #pragma once
 
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -61,23 +60,6 @@ struct StaticInitParams {
   double max_grade_change_mps2 = 0.05;     ///< |a_x| difference at rest (0.05 m/s^2 ~ 0.5 %)
 
   std::string validate() const;
-};
-
-/// What the last completed, settled standstill window showed against the reference.
-enum class WindowVerdict : std::uint8_t {
-  kFirst,       ///< no reference yet: it became the reference (the initial mass)
-  kUnchanged,   ///< the same load as the reference, within threshold_kg
-  kChanged,     ///< another load (step() reported it)
-  kOtherGrade,  ///< standing on another grade than the reference: not comparable
-};
-
-struct StandstillWindow {
-  WindowVerdict verdict = WindowVerdict::kFirst;
-  TimeUs time_us = 0;
-  double deflection_m = 0.0;
-  double deflection_std_m = 0.0;
-  double grade_accel_mps2 = 0.0;  ///< NaN if unknown
-  double threshold_kg = 0.0;      ///< the eq. (3) change that would have counted (kUnchanged)
 };
 
 /// A completed standstill window that changed the believed mass.
@@ -116,11 +98,8 @@ class StaticInitializer {
   double payload_factor_std() const { return factor_std_; }
 
   bool initialised() const { return reference_.has_value(); }
-  /// Settled windows completed so far, and what the last one showed (see WindowVerdict).
-  long windows() const { return windows_; }
-  const StandstillWindow& last_window() const { return last_window_; }
-  /// The next settled window becomes the reference without a comparison (the load it was
-  /// measured at may have changed unseen, and the caller's belief follows the drive since).
+  /// The next settled window becomes the reference without a comparison (the load the
+  /// reference was measured at may have changed unseen: a power cycle).
   void forget_reference() { reference_.reset(); }
   /// Restore after a restart (persistence): the reference deflection of the saved estimate.
   void restore_reference(double deflection_m, double deflection_std_m,
@@ -129,9 +108,9 @@ class StaticInitializer {
 
  private:
   void restart_window();
-  /// The settled window in last_window_ against the reference: its verdict, and the mass when
-  /// it is new.
-  std::optional<StaticMass> judge_window();
+  /// A settled window (mean deflection, its spread, the grade) against the reference: the mass
+  /// when it is new (a first window or a load change).
+  std::optional<StaticMass> judge_window(TimeUs time_us, double mean, double spread, double grade);
 
   double base_std_kg() const;
 
@@ -157,8 +136,6 @@ class StaticInitializer {
     double grade_accel_mps2;  ///< NaN when a_x was not valid
   };
   std::optional<Reference> reference_;
-  long windows_ = 0;
-  StandstillWindow last_window_;
 };
 
 }  // namespace vmass
