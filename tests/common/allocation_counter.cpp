@@ -8,7 +8,14 @@ namespace {
 std::atomic<long> g_allocations{0};
 }  // namespace
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+// The sanitizers bring their own operator new: GCC says so with __SANITIZE_*__, clang with
+// __has_feature (the asan preset compiles with clang).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define VMASS_UNDER_SANITIZER 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || defined(VMASS_UNDER_SANITIZER)
 constexpr bool kCounting = false;
 #else
 constexpr bool kCounting = true;

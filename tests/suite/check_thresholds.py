@@ -2,6 +2,7 @@
 """Checks a vmass-suite subset against regression thresholds.
 
   check_thresholds.py RESULTS.jsonl THRESHOLDS.json
+  check_thresholds.py --runs-only RESULTS.jsonl    (a sanitizer build: no run failed, no figure)
 
 THRESHOLDS.json: {"cells": [{"scenario", "estimator", "knowledge", "min_supported",
 "max_median_abs_final_pct", "min_coverage_end_pct" (optional)}, ...]}. Every cell must have at
@@ -21,7 +22,23 @@ def median(values):
     return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
 
 
+def runs_only(path):
+    """Under a sanitizer the figures are the optimized build's to check: here every run must
+    have finished and every vmass result be supported."""
+    rows = [json.loads(line) for line in open(path, encoding="utf-8") if line.strip()]
+    failed = [r for r in rows if "error" in r]
+    unsupported = [r for r in rows if "error" not in r and not r.get("supported")]
+    for r in failed:
+        print(f"FAILED RUN {r['vehicle']} {r['scenario']} seed {r['seed']}: {r['error']}")
+    for r in unsupported:
+        print(f"UNSUPPORTED {r['vehicle']} {r['scenario']} {r['estimator']}: {r.get('unsupported_reason')}")
+    print(f"{len(rows)} results, {len(failed)} failed runs, {len(unsupported)} unsupported")
+    sys.exit(1 if failed or unsupported or not rows else 0)
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--runs-only":
+        runs_only(sys.argv[2])
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     rows = [json.loads(line) for line in open(sys.argv[1], encoding="utf-8") if line.strip()]
