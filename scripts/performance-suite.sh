@@ -3,6 +3,13 @@
 # benchmark (each beside its baseline in the same run, medians of repeated runs) and writes
 # docs/performance.md with the figures, the machine, its load and the commit.
 #   scripts/performance-suite.sh [--quick] [--out FILE]   (from anywhere; ~10 min, --quick ~3)
+#   scripts/performance-suite.sh --check                  (~1 min: the regression check below)
+#
+#   --check      the hour's replay (vmass-replay --out /dev/null) against a reference workload in
+#                the same run, `wc -l` over the same file repeated until it takes at least a
+#                second, CPU times, medians of 5 alternated runs; fails when the replay costs
+#                more than three times the committed ratio (tools/vmass_bench/replay_ratio.txt),
+#                which a machine's noise never does and a regression like the last (5x) does
 #
 #   micro        vmass-bench (Google Benchmark): decoding random vw_mqb frames in vmass-can's
 #                path and the daemon's, with cantools_bench.py on the same frames (the ratio),
@@ -20,12 +27,13 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
 out_md=docs/performance.md
-quick=0
+quick=0 check=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
+    --check) check=1 ;;
     --out) out_md=$2; shift ;;
-    *) echo "usage: scripts/performance-suite.sh [--quick] [--out FILE]" >&2; exit 2 ;;
+    *) echo "usage: scripts/performance-suite.sh [--quick] [--out FILE] | --check" >&2; exit 2 ;;
   esac
   shift
 done
@@ -57,6 +65,37 @@ timed() {
   t=$( { time "$@" >/dev/null 2>&1; } 2>&1)
   awk '{ printf "%s %.3f\n", $1, $2 + $3 }' <<<"$t"
 }
+
+# CPU seconds (user + sys) of a command, output discarded
+cpu_s() {
+  local TIMEFORMAT='%U %S' t
+  t=$( { time "$@" >/dev/null 2>&1; } 2>&1)
+  awk '{ printf "%.4f\n", $1 + $2 }' <<<"$t"
+}
+wc_passes() { for _ in $(seq "$1"); do wc -l "$work/hour.log"; done; }
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+if [ "$check" = 1 ]; then
+  committed=$(awk '/^ratio / { print $2 }' tools/vmass_bench/replay_ratio.txt)
+  passes=1
+  while [ "$(awk -v t="$(cpu_s wc_passes "$passes")" 'BEGIN { print (t >= 1.0) }')" = 0 ]; do
+    passes=$((passes * 2))
+  done
+  ratios=()
+  for _ in 1 2 3 4 5; do
+    reference=$(cpu_s wc_passes "$passes")
+    replay=$(cpu_s "$bin/vmass-replay" --config "$work/exp2/config.yaml" --log "$work/hour.log" \
+      --out /dev/null)
+    ratios+=("$(awk -v r="$replay" -v w="$reference" -v n="$passes" 'BEGIN { printf "%.2f", r / (w / n) }')")
+    echo "replay $replay s CPU, wc -l x $passes $reference s: ratio ${ratios[-1]}" >&2
+  done
+  ratio=$(printf '%s\n' "${ratios[@]}" | median)
+  limit=$(awk -v c="$committed" 'BEGIN { print 3 * c }')
+  echo "performance-suite --check: replay / wc -l = $ratio (median of 5; committed $committed, fails above $limit)"
+  awk -v r="$ratio" -v l="$limit" 'BEGIN { exit !(r <= l) }' ||
+    { echo "performance-suite --check: FAILED: the replay is slower than 3x its committed cost" >&2; exit 1; }
+  exit 0
+fi
 
 echo "micro benchmarks ..." >&2
 load_micro=$(load)
