@@ -19,7 +19,7 @@ ctest_logged() {
   shift
   mkdir -p "$(dirname "$log")"
   ctest "$@" 2>&1 | tee "$log" || rc=$?
-  stage_notes+=("$(grep -E 'Test +#[0-9]+: service_vmassd_(vcan|systemd) ' "$log" |
+  stage_notes+=("$(grep -E 'Test +#[0-9]+: service_vm_checks ' "$log" |
     sed -E 's/.*: ([a-z_]+) \.+ *([^ ]+) +([0-9.]+) sec.*/  qemu: \1 \3 s (\2)/')")
   return "$rc"
 }

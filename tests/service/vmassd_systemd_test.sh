@@ -11,8 +11,9 @@
 #      restarts it (NRestarts 1), and the new process restores the saved state;
 #   4. `systemctl stop vmassd`: exit 0, the final state saved, the unit's result "success".
 #
-#   vmassd_systemd_test.sh SYSTEMD_VM BUILD_DIR VMASS_SIM
-#   vmassd_systemd_test.sh --inside BUILD_DIR SIM_DIR                  (inside the VM)
+#   vmassd_systemd_test.sh SYSTEMD_VM BUILD_DIR VMASS_SIM                 (boots its own VM)
+#   vmassd_systemd_test.sh --prepare SIM_DIR VMASS_SIM                   (the drive, for --inside)
+#   vmassd_systemd_test.sh --inside BUILD_DIR SIM_DIR                    (inside the VM)
 set -euo pipefail
 
 if [ "${1:-}" = "--inside" ]; then
@@ -74,15 +75,24 @@ if [ "${1:-}" = "--inside" ]; then
   exit 0
 fi
 
+# The drive's first 90 s, its opening standstill (0-5 s) played twice: 10 s at rest give the
+# static window (3 s) room even when a loaded host starves the VM for seconds.
+prepare() {
+  local sim=$1 sim_bin=$2
+  "$sim_bin" --scenario paper_exp2 --seed 2 --out "$sim" > /dev/null
+  shift_log() {  # shift_log FROM TO OFFSET: the frames stamped in [FROM, TO), OFFSET s later
+    awk -v from="$1" -v to="$2" -v off="$3" '{ t = substr($1, 2, length($1) - 2) + 0
+      if (t >= from && t < to) { $1 = sprintf("(%.6f)", t + off); print } }' "$sim/drive.log"
+  }
+  { shift_log 0 5 0; shift_log 0 5 5; shift_log 5 90 5; } > "$sim/drive90.log"
+}
+
+if [ "${1:-}" = "--prepare" ]; then
+  prepare "$2" "$3"
+  exit
+fi
 systemd_vm=$1 build=$2 sim_bin=$3
 out=$(mktemp -d /tmp/vmassd_systemd.XXXXXX)
 trap 'rm -rf "$out"' EXIT
-"$sim_bin" --scenario paper_exp2 --seed 2 --out "$out/sim" > /dev/null
-# The drive's first 90 s, its opening standstill (0-5 s) played twice: 10 s at rest give the
-# static window (3 s) room even when a loaded host starves the VM for seconds.
-shift_log() {  # shift_log FROM TO OFFSET: the frames stamped in [FROM, TO), OFFSET s later
-  awk -v from="$1" -v to="$2" -v off="$3" '{ t = substr($1, 2, length($1) - 2) + 0
-    if (t >= from && t < to) { $1 = sprintf("(%.6f)", t + off); print } }' "$out/sim/drive.log"
-}
-{ shift_log 0 5 0; shift_log 0 5 5; shift_log 5 90 5; } > "$out/sim/drive90.log"
+prepare "$out/sim" "$sim_bin"
 "$systemd_vm" --ifaces can0 --out "$out" --timeout 480 -- "$0" --inside "$build" "$out/sim"

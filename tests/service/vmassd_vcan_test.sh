@@ -42,12 +42,17 @@
 # SIGTERM stops vmassd with exit 0 in both phases.
 #
 #   vmassd_vcan_test.sh VCAN_VM VMASSD PRIUS_DBC PYTHON_TYPES_DIR VMASS_SIM VMASS_REPLAY
-#                       VMASS_CAN READER_TEST
-#   vmassd_vcan_test.sh --inside VMASSD PRIUS_DBC VMASS_CAN READER_TEST     (inside the VM)
+#                       VMASS_CAN READER_TEST                         (boots its own VM)
+# or in three parts, so that another VM's boot can carry the middle one (tests/service/vm_checks.sh):
+#   vmassd_vcan_test.sh --prepare OUT VMASS_SIM                        (the drive, the config)
+#   vmassd_vcan_test.sh --inside VMASSD PRIUS_DBC VMASS_CAN READER_TEST [OUT]   (inside the VM,
+#                       with vcan0, vcan1 and vcan2 up; OUT default $VCAN_VM_OUT)
+#   vmassd_vcan_test.sh --check OUT PYTHON_TYPES_DIR VMASS_REPLAY      (what the VM recorded)
 set -euo pipefail
 
 if [ "${1:-}" = "--inside" ]; then
-  vmassd=$2 dbc=$3 vmass_can=$4 reader_test=$5 out=$VCAN_VM_OUT
+  vmassd=$2 dbc=$3 vmass_can=$4 reader_test=$5 out=${6:-${VCAN_VM_OUT:-}}
+  export VCAN_VM_OUT=$out  # the reader test writes there
   # vmassd logs "vmassd running" once its socket is open and its threads run (start-up in the
   # emulated VM, loading libraries over 9p, can take seconds).
   ready() {
@@ -156,25 +161,24 @@ YAML
   exit "$rc_reader"
 fi
 
-vcan_vm=$1 vmassd=$2 dbc=$3 pydir=$4 sim_bin=$5 replay_bin=$6 vmass_can=$7 reader_test=$8
-out=$(mktemp -d /tmp/vmassd_vcan.XXXXXX)
-trap 'rm -rf "$out"' EXIT
-[ -z "${KEEP_VCAN_OUT:-}" ] || trap - EXIT
+# ------------------------------------------------------------------ before the VM
+prepare() {
+  local out=$1 sim_bin=$2
+  # The drive: paper_exp2's first 60 s, in two halves of 30 s.
+  "$sim_bin" --scenario paper_exp2 --seed 1 --out "$out/sim" > /dev/null
+  awk '{ t = substr($1, 2, length($1) - 2) + 0; if (t < 60) print }' "$out/sim/drive.log" \
+    > "$out/sim/drive60.log"
+  awk '{ t = substr($1, 2, length($1) - 2) + 0; if (t < 30) print > P1; else print > P2 }' \
+    P1="$out/sim/part1.log" P2="$out/sim/part2.log" "$out/sim/drive60.log"
+  { cat "$out/sim/config.yaml"; printf 'lcm:\n  status_period_s: 0.25\n'; } \
+    > "$out/sim/config_vcan.yaml"
+}
 
-# The drive: paper_exp2's first 60 s, in two halves of 30 s.
-"$sim_bin" --scenario paper_exp2 --seed 1 --out "$out/sim" > /dev/null
-awk '{ t = substr($1, 2, length($1) - 2) + 0; if (t < 60) print }' "$out/sim/drive.log" \
-  > "$out/sim/drive60.log"
-awk '{ t = substr($1, 2, length($1) - 2) + 0; if (t < 30) print > P1; else print > P2 }' \
-  P1="$out/sim/part1.log" P2="$out/sim/part2.log" "$out/sim/drive60.log"
-{ cat "$out/sim/config.yaml"; printf 'lcm:\n  status_period_s: 0.25\n'; } \
-  > "$out/sim/config_vcan.yaml"
-
-"$vcan_vm" --ifaces vcan0,vcan1,vcan2 --out "$out" --timeout 420 -- \
-  "$0" --inside "$vmassd" "$dbc" "$vmass_can" "$reader_test"
-
-# ------------------------------------------------------------------ phase 1 checks
-python3 - "$out/out.lcm" "$pydir" <<'PY'
+# ------------------------------------------------------------------ after the VM
+check() {
+  local out=$1 pydir=$2 replay_bin=$3
+  # ------------------------------------------------------------------ phase 1 checks
+  python3 - "$out/out.lcm" "$pydir" <<'PY'
 import struct, sys
 sys.path.insert(0, sys.argv[2])
 import vmass
@@ -217,11 +221,11 @@ if fails:
 sys.exit(1 if fails else 0)
 PY
 
-# ------------------------------------------------------------------ phase 2 checks
-# Reference a: the bus traffic as recorded, preceded by one frame of an id that is not in the DBC
-# at the daemon's tick 0, so that vmass-replay's ticks (T_0 = its first frame) fall on the
-# daemon's grid and its row k is the daemon's tick k.
-t0=$(python3 - "$out/drive.lcm" "$pydir" <<'PY'
+  # ------------------------------------------------------------------ phase 2 checks
+  # Reference a: the bus traffic as recorded, preceded by one frame of an id that is not in the DBC
+  # at the daemon's tick 0, so that vmass-replay's ticks (T_0 = its first frame) fall on the
+  # daemon's grid and its row k is the daemon's tick k.
+  t0=$(python3 - "$out/drive.lcm" "$pydir" <<'PY'
 import struct, sys
 sys.path.insert(0, sys.argv[2])
 import vmass
@@ -236,17 +240,17 @@ while pos + 28 <= len(data):
         break
     pos += 28 + clen + dlen
 PY
-)
-read -r first_utime first_tick <<< "$t0"
-t0_us=$((first_utime - first_tick * 10000))
-printf '(%d.%06d) vcan0 7FF#00\n' $((t0_us / 1000000)) $((t0_us % 1000000)) > "$out/aligned.log"
-cat "$out/captured1.log" "$out/captured2.log" >> "$out/aligned.log"
-"$replay_bin" --config "$out/sim/config_vcan.yaml" --log "$out/aligned.log" \
-  --out "$out/aligned.csv" > "$out/aligned.txt" 2> "$out/aligned.err"
-"$replay_bin" --config "$out/sim/config_vcan.yaml" --log "$out/sim/drive60.log" \
-  --out "$out/original.csv" > "$out/original.txt" 2> "$out/original.err"
+  )
+  read -r first_utime first_tick <<< "$t0"
+  t0_us=$((first_utime - first_tick * 10000))
+  printf '(%d.%06d) vcan0 7FF#00\n' $((t0_us / 1000000)) $((t0_us % 1000000)) > "$out/aligned.log"
+  cat "$out/captured1.log" "$out/captured2.log" >> "$out/aligned.log"
+  "$replay_bin" --config "$out/sim/config_vcan.yaml" --log "$out/aligned.log" \
+    --out "$out/aligned.csv" > "$out/aligned.txt" 2> "$out/aligned.err"
+  "$replay_bin" --config "$out/sim/config_vcan.yaml" --log "$out/sim/drive60.log" \
+    --out "$out/original.csv" > "$out/original.txt" 2> "$out/original.err"
 
-python3 - "$out" "$pydir" <<'PY'
+  python3 - "$out" "$pydir" <<'PY'
 import csv, math, re, struct, sys
 out = sys.argv[1]
 sys.path.insert(0, sys.argv[2])
@@ -354,3 +358,17 @@ if fails:
                  "".join("1" if v else "0" for v in s.input_valid), s.detail))
 sys.exit(1 if fails else 0)
 PY
+}
+
+case "${1:-}" in
+  --prepare) prepare "$2" "$3"; exit ;;
+  --check) check "$2" "$3" "$4"; exit ;;
+esac
+vcan_vm=$1 vmassd=$2 dbc=$3 pydir=$4 sim_bin=$5 replay_bin=$6 vmass_can=$7 reader_test=$8
+out=$(mktemp -d /tmp/vmassd_vcan.XXXXXX)
+trap 'rm -rf "$out"' EXIT
+[ -z "${KEEP_VCAN_OUT:-}" ] || trap - EXIT
+prepare "$out" "$sim_bin"
+"$vcan_vm" --ifaces vcan0,vcan1,vcan2 --out "$out" --timeout 420 -- \
+  "$0" --inside "$vmassd" "$dbc" "$vmass_can" "$reader_test"
+check "$out" "$pydir" "$replay_bin"
