@@ -72,6 +72,7 @@ void read_estimator(YamlReader r, EstimatorParams* e) {
   r.read("converged_ci_halfwidth_fraction", &e->converged_ci_halfwidth_fraction);
   r.read("pair_correlation_ticks", &e->pair_correlation_ticks);
   r.read("model_error_std_fraction", &e->model_error_std_fraction);
+  r.read("power_cycle_min_off_s", &e->power_cycle_min_off_s);
   {
     YamlReader s = r.child("static_init");
     StaticInitParams& p = e->static_init;

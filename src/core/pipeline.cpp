@@ -39,6 +39,7 @@ std::string EstimatorParams::validate() const {
   if (!(model_error_std_fraction >= 0.0 && model_error_std_fraction < 1.0)) {
     c.fail("model_error_std_fraction", "must be in [0, 1)");
   }
+  c.positive("power_cycle_min_off_s", power_cycle_min_off_s);
   if (!(pair_correlation_ticks == 0.0 || pair_correlation_ticks >= 1.0)) {
     c.fail("pair_correlation_ticks", "must be 0 (automatic) or >= 1");
   }
@@ -211,7 +212,7 @@ void Pipeline::on_static_mass(const StaticMass& static_mass, StepResult* result)
 void Pipeline::begin_after_restore(const Sample& sample) {
   restore_pending_ = false;
   const double off_s = to_seconds(sample.time_us - restored_time_us_);
-  if (off_s >= 0.0 && off_s <= params_.estimator.load_change.min_stop_s) return;  // same drive
+  if (off_s >= 0.0 && off_s <= params_.estimator.power_cycle_min_off_s) return;  // same drive
   // A power cycle: the load may have changed while parked, and the belief's pairs and its
   // reference deflection are of the load it had then. The mass starts afresh, as on a first
   // drive: at the first standstill window (a car that reads its load) or with the drive (one

@@ -18,8 +18,10 @@
 // extractors' short histories and the pairs held until the lag is identified are not carried over.
 //
 // The first step after restore() tells a restart within a drive from the vehicle's next drive:
-//   - within a drive (its sample at most load_change.min_stop_s after the snapshot): the belief
-//     goes on as it was; no load can have changed;
+//   - within a drive (its sample at most estimator.power_cycle_min_off_s after the snapshot):
+//     the belief goes on as it was; a stop meanwhile is re-checked as any stop is (the next
+//     standstill window against the reference; without a load sensor, the load monitor counts
+//     the time off as a long stop);
 //   - a power cycle (longer, or a clock that went back): the load may have changed while parked,
 //     and the pairs of yesterday's load are no evidence of today's, nor its reference deflection
 //     of today's load. The mass starts afresh, exactly as on a first drive (reason
@@ -75,6 +77,12 @@ struct EstimatorParams {
   /// rolling and rotating terms, wheel-speed errors): a floor of the published interval,
   /// in quadrature with the declared accuracies (Estimate::mass_model_std_kg).
   double model_error_std_fraction = 0.01;
+  /// A restore whose first input comes more than this after the snapshot (or before it: a
+  /// clock that went back) is a power cycle: the vehicle was off, the load may have changed,
+  /// and the mass starts afresh. Within it the daemon restarted during a drive (a crash, the
+  /// watchdog: the state is at most daemon.persist_interval_s old, plus systemd's RestartSec)
+  /// and the belief goes on; a stop meanwhile is re-checked as any stop is.
+  double power_cycle_min_off_s = 120.0;
 
   /// The correlation ticks in effect for pairs differenced with `d` (>= 1).
   double effective_pair_correlation_ticks(const DifferencingParams& d) const;
