@@ -35,13 +35,16 @@ void Parser::finish() {
   // Signals the tables cannot hold are reported and left out, so that the rest of the file
   // stays usable; the result is not ok().
   for (Message& m : db_.messages) check_layout(m);
+  for (std::size_t i = 0; i < db_.messages.size(); ++i) index_signals(i);  // after the drops
   // Extended multiplexing (by name, so after the layout pass removed signals).
   for (const MulValEntry& e : mul_vals_) {
     const int msg = message_for(e.raw_id, "SG_MUL_VAL_");
     Signal* sg = signal_for(msg, e.signal, "SG_MUL_VAL_");
     if (sg == nullptr) continue;
     Message& m = db_.messages[static_cast<std::size_t>(msg)];
-    const int sw = m.find_signal(e.switch_name);
+    const auto& index = signal_index_[static_cast<std::size_t>(msg)];
+    const auto found = index.find(e.switch_name);
+    const int sw = found == index.end() ? -1 : found->second;
     if (sw < 0 || !m.signals[static_cast<std::size_t>(sw)].is_multiplexor) {
       error_at(e.line, "SG_MUL_VAL_ " + e.signal + ": " + e.switch_name +
                            " is not a multiplexor of message " + m.name);
@@ -219,9 +222,8 @@ std::bitset<8 * kFdMaxLen> Parser::bits_of(const Signal& sg) {
   return b;
 }
 
-std::vector<std::pair<int, const std::vector<MuxRange>*>> Parser::mux_chain(const Message& m,
-                                                                            std::size_t i) {
-  std::vector<std::pair<int, const std::vector<MuxRange>*>> chain;
+Parser::MuxChain Parser::mux_chain(const Message& m, std::size_t i) {
+  MuxChain chain;
   const Signal* s = &m.signals[i];
   while (s->mux_parent >= 0 && chain.size() <= m.signals.size()) {
     chain.emplace_back(s->mux_parent, &s->mux_ranges);
@@ -230,10 +232,11 @@ std::vector<std::pair<int, const std::vector<MuxRange>*>> Parser::mux_chain(cons
   return chain;
 }
 
-bool Parser::can_coexist(const Message& m, std::size_t i, std::size_t j) {
-  for (const auto& [p, ra] : mux_chain(m, i)) {
-    for (const auto& [q, rb] : mux_chain(m, j)) {
+bool Parser::can_coexist(const MuxChain& a, const MuxChain& b, long* work) {
+  for (const auto& [p, ra] : a) {
+    for (const auto& [q, rb] : b) {
       if (p != q) continue;
+      *work += static_cast<long>(ra->size() * rb->size());
       bool meet = false;
       for (const MuxRange& x : *ra) {
         for (const MuxRange& y : *rb) meet = meet || (x.lo <= y.hi && y.lo <= x.hi);
@@ -246,11 +249,26 @@ bool Parser::can_coexist(const Message& m, std::size_t i, std::size_t j) {
 
 void Parser::check_overlaps(const Message& m) {
   std::vector<std::bitset<8 * kFdMaxLen>> bits;
+  std::vector<MuxChain> chains;
   bits.reserve(m.signals.size());
-  for (const Signal& sg : m.signals) bits.push_back(bits_of(sg));
+  chains.reserve(m.signals.size());
   for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    bits.push_back(bits_of(m.signals[i]));
+    chains.push_back(mux_chain(m, i));
+  }
+  // Pairwise, with a bound on the work: a file may give a message thousands of multiplexed
+  // signals over the same bits, each selected by many ranges.
+  constexpr long kMaxWork = 20'000'000;
+  long work = 0;
+  for (std::size_t i = 0; i < m.signals.size(); ++i) {
+    if (work > kMaxWork) {
+      warning(m.signals[i].line, "message " + m.name + ": overlaps not checked from signal " +
+                                     m.signals[i].name + " on (too many signals share bits)");
+      return;
+    }
     for (std::size_t j = 0; j < i; ++j) {
-      if ((bits[i] & bits[j]).any() && can_coexist(m, i, j)) {
+      ++work;
+      if ((bits[i] & bits[j]).any() && can_coexist(chains[i], chains[j], &work)) {
         deviation(m.signals[i].line, "signal " + m.signals[i].name + " of message " + m.name +
                                          " overlaps signal " + m.signals[j].name);
         break;

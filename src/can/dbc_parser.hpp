@@ -142,17 +142,23 @@ class Parser {
   static std::bitset<8 * kFdMaxLen> bits_of(const Signal& sg);
 
   /// (switch, ranges selecting the next link) from a signal up to the root of its mux tree.
-  static std::vector<std::pair<int, const std::vector<MuxRange>*>> mux_chain(const Message& m,
-                                                                             std::size_t i);
+  using MuxChain = std::vector<std::pair<int, const std::vector<MuxRange>*>>;
+  static MuxChain mux_chain(const Message& m, std::size_t i);
 
-  /// False when some switch both depend on selects them with disjoint values.
-  static bool can_coexist(const Message& m, std::size_t i, std::size_t j);
+  /// False when some switch both signals depend on selects them with disjoint values. Adds the
+  /// range comparisons it made to *work.
+  static bool can_coexist(const MuxChain& a, const MuxChain& b, long* work);
 
   /// Signals that can be present together and share bits: loaded as written, reported.
   void check_overlaps(const Message& m);
   static std::string hex(std::uint32_t v);
   static constexpr int kNone = -1;
   static constexpr int kIgnored = -2;
+  /// What a message may hold: far beyond any real file (the largest of ours has 64 signals), and
+  /// small enough that every check of a message stays cheap (the overlap check is pairwise).
+  static constexpr std::size_t kMaxSignalsPerMessage = 4096;
+  static constexpr std::size_t kMaxMuxRanges = 1024;  ///< per SG_MUL_VAL_ statement
+  void index_signals(std::size_t msg);
 
   std::string_view s_;
   std::string_view file_;
@@ -170,7 +176,10 @@ class Parser {
   std::unordered_map<std::uint64_t, int> by_key_;     // (extended << 32 | id) -> message
   std::unordered_map<std::uint32_t, int> by_raw_id_;  // id as written -> message
   std::unordered_map<std::string, int> by_name_;      // message name -> first message
-  std::unordered_set<std::uint32_t> ignored_ids_;     // VECTOR__INDEPENDENT_SIG_MSG
+  /// Per message: signal name -> its first signal (statements name signals: a linear search
+  /// per statement made a message of 45,000 signals quadratic). Rebuilt after check_layout.
+  std::vector<std::unordered_map<std::string, int>> signal_index_;
+  std::unordered_set<std::uint32_t> ignored_ids_;  // VECTOR__INDEPENDENT_SIG_MSG
   std::unordered_set<long> explicit_cycle_, explicit_format_;
   std::vector<MulValEntry> mul_vals_;
 };

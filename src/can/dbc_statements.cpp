@@ -150,6 +150,7 @@ void Parser::parse_bo() {
   by_key_[key] = index;
   by_raw_id_[raw_id] = index;
   db_.messages.push_back(std::move(m));
+  signal_index_.emplace_back();
   current_message_ = index;
 }
 
@@ -187,7 +188,25 @@ void Parser::parse_sg() {
   sg.start_bit = static_cast<int>(start);
   sg.length = static_cast<int>(length);
   if (current_message_ == kIgnored) return;
-  db_.messages[static_cast<std::size_t>(current_message_)].signals.push_back(std::move(sg));
+  const auto msg = static_cast<std::size_t>(current_message_);
+  Message& m = db_.messages[msg];
+  if (m.signals.size() >= kMaxSignalsPerMessage) {
+    error_at(line, "signal " + sg.name + ": message " + m.name + " has more than " +
+                       std::to_string(kMaxSignalsPerMessage) +
+                       " signals (vmass reads at most that many; the rest are left out)");
+    return;
+  }
+  signal_index_[msg].emplace(sg.name, static_cast<int>(m.signals.size()));
+  m.signals.push_back(std::move(sg));
+}
+
+void Parser::index_signals(std::size_t msg) {
+  std::unordered_map<std::string, int>& index = signal_index_[msg];
+  index.clear();
+  const std::vector<Signal>& signals = db_.messages[msg].signals;
+  for (std::size_t i = 0; i < signals.size(); ++i) {
+    index.emplace(signals[i].name, static_cast<int>(i));  // the first of a name, as find_signal
+  }
 }
 
 bool Parser::read_mux_indicator(Signal& sg) {
@@ -268,7 +287,9 @@ int Parser::message_for(std::uint32_t raw_id, const char* statement) {
 Signal* Parser::signal_for(int msg, const std::string& name, const char* statement) {
   if (msg < 0) return nullptr;
   Message& m = db_.messages[static_cast<std::size_t>(msg)];
-  const int i = m.find_signal(name);
+  const auto& index = signal_index_[static_cast<std::size_t>(msg)];
+  const auto found = index.find(name);
+  const int i = found == index.end() ? -1 : found->second;
   if (i < 0) {
     deviation(statement_line_, std::string(statement) + " refers to unknown signal " + name +
                                    " of message " + m.name);
@@ -549,6 +570,11 @@ void Parser::parse_sg_mul_val() {
     if (!read_uint(r.hi, "range end")) return;
     if (r.hi < r.lo) {
       error_at(e.line, "SG_MUL_VAL_ " + e.signal + ": empty range");
+      return;
+    }
+    if (e.ranges.size() >= kMaxMuxRanges) {
+      error_at(e.line, "SG_MUL_VAL_ " + e.signal + ": more than " + std::to_string(kMaxMuxRanges) +
+                           " ranges (vmass reads at most that many)");
       return;
     }
     e.ranges.push_back(r);

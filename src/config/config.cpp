@@ -255,6 +255,26 @@ ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::str
   return out;
 }
 
+/// The one YAML document of a config: a second one (after `---`, or anything after `...`) would
+/// be read by nobody, so it is an error, as is a text that holds none.
+ConfigLoad parse_text(const std::string& text, const std::string& file,
+                      const std::string& directory) {
+  try {
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (documents.size() > 1) {
+      ConfigLoad out;
+      out.error = file + ":" + std::to_string(documents[1].Mark().line + 1) +
+                  ": a second YAML document: a config is one (nothing after '---' or '...')";
+      return out;
+    }
+    return parse(documents.empty() ? YAML::Node() : documents.front(), file, directory);
+  } catch (const YAML::Exception& e) {
+    ConfigLoad out;
+    out.error = file + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;
+    return out;
+  }
+}
+
 }  // namespace
 
 std::string Config::resolve_path(const std::string& path) const {
@@ -276,23 +296,11 @@ ConfigLoad load_config(const std::string& path) {
   }
   const auto slash = path.find_last_of('/');
   const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash);
-  try {
-    return parse(YAML::Load(text.text), path, directory);
-  } catch (const YAML::Exception& e) {
-    ConfigLoad out;
-    out.error = path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;
-    return out;
-  }
+  return parse_text(text.text, path, directory);
 }
 
 ConfigLoad load_config_text(const std::string& text, const std::string& name) {
-  try {
-    return parse(YAML::Load(text), name, "");
-  } catch (const YAML::Exception& e) {
-    ConfigLoad out;
-    out.error = name + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;
-    return out;
-  }
+  return parse_text(text, name, "");
 }
 
 }  // namespace vmass

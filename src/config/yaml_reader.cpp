@@ -118,6 +118,16 @@ bool YamlReader::has(const std::string& key) const {
   return node_ && node_.IsMap() && node_[key] && !node_[key].IsNull();
 }
 
+void YamlReader::refuse_null(const std::string& key) const {
+  // A key written with no value, or ~, is YAML's null: never taken for "use the default".
+  if (node_ && node_.IsMap() && node_[key] && node_[key].IsNull()) {
+    std::ostringstream msg;
+    msg << file_ << ":" << line_of(node_[key]) << ": " << io::excerpt(full_key(key))
+        << ": no value (null, '~' or empty): write one, or leave the key out for its default";
+    throw ConfigError(msg.str());
+  }
+}
+
 YAML::Node YamlReader::value_node(const std::string& key) const {
   if (!node_ || !node_.IsMap()) return YAML::Node();
   return node_[key];
@@ -125,6 +135,7 @@ YAML::Node YamlReader::value_node(const std::string& key) const {
 
 void YamlReader::read(const std::string& key, double* out) {
   used_.push_back(key);
+  refuse_null(key);
   if (!has(key)) return;
   YAML::Node n = value_node(key);
   if (!n.IsScalar() || !parse_double(n.Scalar(), out) || std::isnan(*out)) {
@@ -149,6 +160,7 @@ void YamlReader::read(const std::string& key, int* out) {
 
 void YamlReader::read(const std::string& key, bool* out) {
   used_.push_back(key);
+  refuse_null(key);
   if (!has(key)) return;
   YAML::Node n = value_node(key);
   const std::string s = n.IsScalar() ? io::excerpt(n.Scalar()) : "";
@@ -163,6 +175,7 @@ void YamlReader::read(const std::string& key, bool* out) {
 
 void YamlReader::read(const std::string& key, std::string* out) {
   used_.push_back(key);
+  refuse_null(key);
   if (!has(key)) return;
   YAML::Node n = value_node(key);
   if (!n.IsScalar()) fail(key, "expected a string");
@@ -171,6 +184,7 @@ void YamlReader::read(const std::string& key, std::string* out) {
 
 void YamlReader::read(const std::string& key, std::vector<double>* out) {
   used_.push_back(key);
+  refuse_null(key);
   if (!has(key)) return;
   YAML::Node n = value_node(key);
   if (!n.IsSequence()) fail(key, "expected a list of numbers");

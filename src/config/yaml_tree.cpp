@@ -12,12 +12,25 @@ std::string join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
-/// Depth-first; "" or the first duplicate's error. Depth is bounded by yaml-cpp's parser.
-std::string find_duplicate(const YAML::Node& node, const std::string& file,
-                           const std::string& path) {
+/// Nodes the walk visits at most. An alias is a shared node that the walk visits once per
+/// reference: nested anchors make a 2.6 kB text a tree of billions (the "billion laughs"), which
+/// would take hours to walk. Real configs are a few hundred nodes.
+constexpr long kMaxYamlNodes = 100000;
+
+/// Depth-first; "" or the first duplicate's error, or the error of a tree too large to walk.
+/// Depth is bounded by yaml-cpp's parser.
+std::string find_duplicate(const YAML::Node& node, const std::string& file, const std::string& path,
+                           long* visited) {
+  if (++*visited > kMaxYamlNodes) {
+    return file + ":" + std::to_string(node.Mark().line + 1) + ": " +
+           io::excerpt(path.empty() ? std::string("(top)") : path) + ": the YAML holds more than " +
+           std::to_string(kMaxYamlNodes) +
+           " nodes once its aliases (*name) are expanded; a config has a few hundred";
+  }
   if (node.IsSequence()) {
     for (std::size_t i = 0; i < node.size(); ++i) {
-      const std::string e = find_duplicate(node[i], file, path + "[" + std::to_string(i) + "]");
+      const std::string e =
+          find_duplicate(node[i], file, path + "[" + std::to_string(i) + "]", visited);
       if (!e.empty()) return e;
     }
     return "";
@@ -32,7 +45,7 @@ std::string find_duplicate(const YAML::Node& node, const std::string& file,
       return file + ":" + std::to_string(line) + ": " + io::excerpt(join(path, key)) +
              ": duplicate key (first at line " + std::to_string(it->second) + ")";
     }
-    const std::string e = find_duplicate(kv.second, file, join(path, key));
+    const std::string e = find_duplicate(kv.second, file, join(path, key), visited);
     if (!e.empty()) return e;
   }
   return "";
@@ -41,7 +54,8 @@ std::string find_duplicate(const YAML::Node& node, const std::string& file,
 }  // namespace
 
 std::string duplicate_key_error(const YAML::Node& root, const std::string& file) {
-  return find_duplicate(root, file, "");
+  long visited = 0;
+  return find_duplicate(root, file, "", &visited);
 }
 
 int line_of_key(const YAML::Node& root, std::string_view dotted_key) {

@@ -73,6 +73,10 @@ BAD_CONFIG = {
     "levelled_not_bool": config_with("suspension:\n", "suspension:\n  levelled: maybe\n"),
     "load_change_zero_pairs": config_with("  type: bayes", "  type: bayes\n  load_change:\n    min_pairs: 0"),
     "huge_timeout": config_with("  type: bayes", "  type: bayes\n  lateral:\n    min_speed_mps: 1e13"),
+    "null_value": config_with("  type: bayes", "  type: bayes\n  tick_rate_hz: ~"),
+    "second_document": BASE_CONFIG + "\n---\nvehicle:\n  empty_mass_kg: 9\n",
+    "nested_aliases": BASE_CONFIG + "\nx0: &l0 [lol]\n" + "".join(
+        f"x{i}: &l{i} [{', '.join([f'*l{i - 1}'] * 10)}]\n" for i in range(1, 10)),
 }
 
 SAMPLES_HEADER = open(os.path.join(GOLDEN, "samples.csv")).readline()
@@ -94,7 +98,8 @@ BAD_BALLAST = {
 
 
 def cases(tmp):
-    """(name, argv, exit code, expected stderr substring) for every case."""
+    """(name, argv[, standard output's path]) for every case; the table has its exit code and
+    expected stderr substring."""
     out = []
 
     def write(name, content):
@@ -146,12 +151,16 @@ def cases(tmp):
                                        samples]))
     out.append(("replay.unknown_estimator", [replay, "--config", config, "--samples", samples,
                                              "--estimator", "kalman"]))
+    out.append(("replay.stdout_full", [replay, "--config", config, "--samples", samples,
+                                       "--out", "-"], "/dev/full"))
     return out
 
 
-def run(argv):
-    p = subprocess.run(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                       stderr=subprocess.PIPE, timeout=60)
+def run(argv, stdout_path=None):
+    with open(stdout_path or os.devnull, "wb") as sink:
+        p = subprocess.run(argv, stdin=subprocess.DEVNULL,
+                           stdout=sink if stdout_path else subprocess.PIPE,
+                           stderr=subprocess.PIPE, timeout=60)
     return p.returncode, p.stderr.decode(errors="replace")
 
 
@@ -166,8 +175,8 @@ def main():
     failures = 0
     with tempfile.TemporaryDirectory() as tmp:
         all_cases = cases(tmp)
-        for name, argv in all_cases:
-            code, err = run(argv)
+        for name, argv, *stdout_path in all_cases:
+            code, err = run(argv, *stdout_path)
             first = err.strip().split("\n")[0] if err.strip() else ""
             if RECORD:
                 print(f"{name}\t{code}\t{first[:300]}")

@@ -49,6 +49,8 @@ class YamlReader {
 
  private:
   YAML::Node value_node(const std::string& key) const;
+  /// Throws when the key is there with a null value (`key:`, `key: ~`).
+  void refuse_null(const std::string& key) const;
   int line_of(const YAML::Node& n) const;
 
   YAML::Node node_;
