@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <utility>
 
@@ -20,6 +21,38 @@ constexpr UnitFactor kDeflectionUnits[] = {
     {"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}, {"in", 0.0254}};
 constexpr UnitFactor kTimeUnits[] = {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}};
 constexpr UnitFactor kSpeedUnits[] = {{"mps", 1.0}, {"kmh", 1.0 / 3.6}};
+
+/// The range a physical quantity of a static ballast test can take, in SI units. A value beyond
+/// it is a unit or typing error (grams in a _kg column, millimetres in an _m column) that would
+/// otherwise fit an absurd stiffness without complaint.
+struct Bound {
+  double low;
+  double high;
+  const char* unit;
+  const char* why;
+};
+
+// Ballast is added to (or, below zero, taken from) one road vehicle: the heaviest trucks weigh
+// about 60 t in all. The config loader's own limit on a _kg key (1e7 kg, yaml_reader.cpp) bounds
+// any mass it reads, not ballast, so it is too loose to catch a unit error here.
+constexpr Bound kAddedMassBound{-1000.0, 100000.0, "kg", "ballast added to one vehicle"};
+// A suspension travels well under 0.5 m; 1 m leaves room for a sensor's zero offset while still
+// catching millimetres written in an _m column (the loader's 1e4 m bounds any length key).
+constexpr Bound kDeflectionBound{-1.0, 1.0, "m", "a suspension travels well under 0.5 m"};
+
+// A number for a message, 6 significant digits (the tools keep the "C" numeric locale).
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+/// "" when v is within b, else "V UNIT is outside [LOW, HIGH] UNIT (WHY; a unit error?)".
+std::string out_of_bound(double v, const Bound& b) {
+  if (v >= b.low && v <= b.high) return "";
+  return number_text(v) + " " + b.unit + " is outside [" + number_text(b.low) + ", " +
+         number_text(b.high) + "] " + b.unit + " (" + b.why + "; a unit error?)";
+}
 
 template <std::size_t N>
 std::string unit_list(const UnitFactor (&units)[N]) {
@@ -104,6 +137,7 @@ bool match_column(std::string_view name, const std::string& prefix, const UnitFa
 /// The columns the header names.
 struct Columns {
   Column mass, deflection, time, speed;
+  std::size_t field_count = 0;  ///< the header's; every row must have as many
 };
 
 /// The header: which column is what, in which unit; the file's kind. Throws Failure.
@@ -121,6 +155,7 @@ std::string quoted_header(std::string_view line) {
 Columns read_header(const std::vector<std::string_view>& cells, std::string_view line,
                     const std::string& where, BallastCsvKind* kind) {
   Columns c;
+  c.field_count = cells.size();
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const int idx = static_cast<int>(i);
     if (match_column(cells[i], "added_mass", kMassUnits, where, idx, &c.mass)) continue;
@@ -152,11 +187,8 @@ class RowReader {
   RowReader(const std::vector<std::string_view>& cells, const std::string& where)
       : cells_(cells), where_(where) {}
 
-  double value(const Column& c, bool empty_allowed) const {
-    if (static_cast<std::size_t>(c.index) >= cells_.size()) {
-      throw Failure(where_ + ": " + c.name + ": missing (the row has " +
-                    std::to_string(cells_.size()) + " fields)");
-    }
+  /// The cell in SI units; `bound`, when given, is checked on it.
+  double value(const Column& c, bool empty_allowed, const Bound* bound = nullptr) const {
     const std::string_view cell = cells_[static_cast<std::size_t>(c.index)];
     if (cell.empty()) {
       if (empty_allowed) return std::nan("");
@@ -169,7 +201,13 @@ class RowReader {
     }
     if (std::isnan(v)) throw Failure(where_ + ": " + c.name + ": NaN");
     if (!std::isfinite(v)) throw Failure(where_ + ": " + c.name + ": infinite value");
-    return v * c.factor;
+    const double si = v * c.factor;
+    if (bound != nullptr) {
+      if (const std::string m = out_of_bound(si, *bound); !m.empty()) {
+        throw Failure(where_ + ": " + c.name + ": " + m);
+      }
+    }
+    return si;
   }
 
  private:
@@ -177,19 +215,31 @@ class RowReader {
   const std::string& where_;
 };
 
+/// A row must have the header's field count. One more is most often a decimal comma ("13,3" for
+/// 13.3) splitting a number in two, which would read 13 and shift the columns after it; one
+/// fewer is a row cut short, whose cells may sit under the wrong column. Throws Failure.
+void check_field_count(std::size_t fields, std::size_t header_fields, const std::string& where) {
+  if (fields == header_fields) return;
+  const std::string counts = std::to_string(fields) + (fields == 1 ? " field" : " fields") +
+                             ", the header has " + std::to_string(header_fields);
+  throw Failure(where + ": " + counts +
+                (fields > header_fields ? "; decimal commas? (write 13.3, not 13,3)"
+                                        : "; a row cut short? (an empty cell keeps its comma)"));
+}
+
 /// One data row into the steps or the series (a series row without time or deflection is
 /// skipped, counted).
 void read_row(const RowReader& row, const Columns& c, BallastCsv* csv) {
   if (csv->kind == BallastCsvKind::kSteps) {
     BallastSample s;
-    s.added_mass_kg = row.value(c.mass, false);
-    s.deflection_m = row.value(c.deflection, false);
+    s.added_mass_kg = row.value(c.mass, false, &kAddedMassBound);
+    s.deflection_m = row.value(c.deflection, false, &kDeflectionBound);
     csv->samples.push_back(s);
     return;
   }
   DeflectionPoint p;
   p.time_s = row.value(c.time, true);
-  p.deflection_m = row.value(c.deflection, true);
+  p.deflection_m = row.value(c.deflection, true, &kDeflectionBound);
   if (c.speed.index >= 0) p.speed_mps = row.value(c.speed, true);
   if (std::isnan(p.time_s) || std::isnan(p.deflection_m)) {
     ++csv->skipped_rows;
@@ -198,7 +248,20 @@ void read_row(const RowReader& row, const Columns& c, BallastCsv* csv) {
   csv->series.push_back(p);
 }
 
+// Spreadsheets (Excel's "CSV UTF-8") start the file with a UTF-8 byte order mark: it belongs to
+// no column name, so it is dropped rather than refused.
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+// The --masses list is held to the same bound as an added_mass column.
+std::string check_mass_list(const std::vector<double>& masses_kg) {
+  for (const double m : masses_kg) {
+    if (std::string why = out_of_bound(m, kAddedMassBound); !why.empty()) return "masses: " + why;
+  }
+  return "";
+}
+
 BallastCsv parse(std::string_view text, const std::string& name) {
+  if (text.substr(0, kUtf8Bom.size()) == kUtf8Bom) text.remove_prefix(kUtf8Bom.size());
   BallastCsv csv;
   Columns columns;
   bool have_header = false;
@@ -219,6 +282,7 @@ BallastCsv parse(std::string_view text, const std::string& name) {
       columns = read_header(cells, line, where, &csv.kind);
       continue;
     }
+    check_field_count(cells.size(), columns.field_count, where);
     read_row(RowReader(cells, where), columns, &csv);
   }
   if (!have_header) throw Failure(name + ": empty file (no header)");
@@ -276,7 +340,7 @@ std::string parse_mass_list(const std::string& text, std::vector<double>* out) {
     const double count = std::floor((v[2] - v[0]) / v[1] + 1e-9);
     if (count > 10000) return "masses: range too long";
     for (int i = 0; i <= static_cast<int>(count); ++i) out->push_back(v[0] + i * v[1]);
-    return "";
+    return check_mass_list(*out);
   }
   for (std::string_view cell : split(all)) {
     double x = 0.0;
@@ -286,7 +350,7 @@ std::string parse_mass_list(const std::string& text, std::vector<double>* out) {
     out->push_back(x);
   }
   if (out->empty()) return "masses: empty list";
-  return "";
+  return check_mass_list(*out);
 }
 
 }  // namespace vmass::calibrate

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "vmass/config/suspension_section.hpp"
+#include "vmass/config/yaml_reader.hpp"
 #include "vmass/core/static_initializer.hpp"
 
 namespace vmass::calibrate {
@@ -137,6 +138,32 @@ std::string suspension_yaml(const SuspensionCalibration& calibration,
   std::string out;
   for (const std::string& line : header_comment) out += "# " + line + "\n";
   return out + suspension_section_yaml(p, comments);
+}
+
+std::string check_suspension_yaml(const std::string& yaml) {
+  // Read back with the loader's own reader and field table, so that its bounds apply as they
+  // are, not a copy of them that could drift.
+  const std::string name = "snippet";
+  try {
+    const YAML::Node root = YAML::Load(yaml);
+    YamlReader r(root["suspension"], name, "suspension");
+    SuspensionParams p;
+    for (const SuspensionField& field : kSuspensionFields) {
+      if (field.required) {
+        r.require(field.key, &(p.*field.member));
+      } else {
+        r.read(field.key, &(p.*field.member));
+      }
+    }
+    return p.validate();
+  } catch (const ConfigError& e) {
+    // "snippet:LINE: suspension.KEY: ...": the line of a text nobody sees says nothing.
+    const std::string m = e.what();
+    const std::size_t after_line = m.find(": ");
+    return after_line == std::string::npos ? m : m.substr(after_line + 2);
+  } catch (const YAML::Exception& e) {
+    return std::string("not YAML: ") + e.what();
+  }
 }
 
 std::string calibration_json(const SuspensionCalibration& cal,

@@ -68,10 +68,10 @@ TEST(BallastCsv, BadInputNamesTheProblem) {
        "b.csv:3: "
        "rear_right_deflection_mm: NaN"},
       {"added_mass_kg,rear_right_deflection_mm\n0,12.0\n100,19.3mm\n", "'19.3mm' is not a number"},
-      {"added_mass_kg,rear_right_deflection_mm\n0,12,0\n100 kg,19\n", "'100 kg' is not a number"},
+      {"added_mass_kg,rear_right_deflection_mm\n0,12\n100 kg,19\n", "'100 kg' is not a number"},
       {"added_mass_kg,rear_right_deflection_mm\n0,12\n100,\n", "empty cell"},
       {"added_mass_kg,rear_right_deflection_mm\n0,inf\n", "infinite"},
-      {"added_mass_kg,rear_right_deflection_mm\n0\n", "missing"},
+      {"added_mass_kg,rear_right_deflection_mm\n0\n", "b.csv:2: 1 field, the header has 2"},
       {"added_mass_kg,deflection_mm\n0,1\n", "no rear_right_deflection_<unit> column"},
       {"mass,rear_right_deflection_mm\n0,1\n", "need an added_mass_<unit> column"},
       {"added_mass_kg,rear_right_deflection_mm\n", "no data rows"},

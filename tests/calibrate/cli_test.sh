@@ -47,6 +47,29 @@ case "$case_name" in
   number_with_unit)
     printf 'added_mass_kg,rear_right_deflection_mm\n0,12 mm\n' >s.csv
     expect_error 2 "'12 mm' is not a number" --ballast s.csv $geometry ;;
+  absurd_mass)
+    printf 'added_mass_kg,rear_right_deflection_mm\n0,12\n1e9,19\n2e9,26\n' >s.csv
+    expect_error 2 "s.csv:3: added_mass_kg: 1e+09 kg is outside \\[-1000, 100000\\] kg" \
+      --ballast s.csv $geometry ;;
+  absurd_deflection)
+    printf 'added_mass_kg,rear_right_deflection_m\n0,10\n100,15\n200,20\n' >s.csv
+    expect_error 2 "s.csv:2: rear_right_deflection_m: 10 m is outside \\[-1, 1\\] m" \
+      --ballast s.csv $geometry ;;
+  decimal_comma)
+    printf 'added_mass_kg,rear_right_deflection_mm\n0,12\n100,13,3\n200,14,6\n' >s.csv
+    expect_error 2 "s.csv:3: 3 fields, the header has 2; decimal commas?" --ballast s.csv $geometry ;;
+  byte_order_mark)
+    printf '\357\273\277' >s.csv && good_steps body.csv && cat body.csv >>s.csv
+    "$tool" --ballast s.csv $geometry >out.txt 2>err.txt || { echo "FAIL: exit $?"; cat err.txt; exit 1; }
+    grep -q 'stiffness_n_per_m: 3' out.txt || { echo "FAIL: no stiffness"; cat out.txt; exit 1; }
+    echo "ok: a UTF-8 byte order mark is ignored" ;;
+  loader_would_refuse)
+    # Within every input bound, but 0.005 mm per 50 t: a stiffness the config loader refuses.
+    printf 'added_mass_kg,rear_right_deflection_mm\n0,12\n50000,12.005\n100000,12.01\n' >s.csv
+    expect_error 1 "the config loader would refuse it (suspension.stiffness_n_per_m: .* (|x| <= 1e+10 N/m))" \
+      --ballast s.csv $geometry --write-config w.yaml --json
+    test ! -e w.yaml || { echo "FAIL: snippet written"; exit 1; }
+    test ! -s out.txt || { echo "FAIL: a result was printed"; cat out.txt; exit 1; } ;;
   candump_log)
     printf '(1700000000.000000) can0 123#0011223344556677\n' >test.log
     expect_error 2 "is a CAN log: give --config FILE" --ballast test.log $geometry

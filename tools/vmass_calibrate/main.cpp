@@ -15,7 +15,8 @@
 // gives one point (time of that frame, deflection, speed when valid); held values are not
 // repeated, so the plateau detector's noise estimate sees the sensor's own sample rate. The
 // series' standstill plateaus are found and paired with --masses. Exit codes: 0 ok, 1 fit not
-// usable or plot failed, 2 usage or data error.
+// usable (or one the config loader would refuse: nothing is written) or plot failed, 2 usage or
+// data error (a value beyond its physical bound included: ballast_csv.hpp).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -319,6 +320,13 @@ int main(int argc, char** argv) {
       c, {"rear-right suspension, written by vmass-calibrate from " +
               fs::path(o.ballast_path).filename().string(),
           "(replace the suspension: section of the vmassd config with this one)"});
+  if (std::string m = cal::check_suspension_yaml(snippet); !m.empty()) {
+    return fail(o.ballast_path +
+                    ": the fitted suspension is not written: the config loader would " +
+                    "refuse it (" + m + "); are the masses and deflections in the units " +
+                    "their columns name?",
+                kExitFailure);
+  }
   if (!o.write_config_path.empty() && !write_file(o.write_config_path, snippet)) {
     return fail(o.write_config_path + ": cannot write");
   }

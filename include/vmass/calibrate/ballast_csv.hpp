@@ -9,7 +9,11 @@
 // A column with an unknown or missing unit is an error naming the column; a cell that is not a
 // number, or NaN / inf, is an error naming file:line and column. In a series an empty cell marks
 // an invalid input at that row (the samples.csv convention) and the row is skipped. Numbers are
-// parsed locale-free; '#' lines and blank lines are skipped; CRLF is accepted.
+// parsed locale-free; '#' lines and blank lines are skipped; CRLF and a leading UTF-8 byte order
+// mark are accepted. Every row has the header's field count (one more is most often a decimal
+// comma). Values beyond a physical bound (added mass outside [-1000, 100000] kg, |deflection| >
+// 1 m: a unit error) are errors naming file:line, the column, the value and the bound; so are
+// --masses values beyond the mass bound (parse_mass_list).
 //
 // Pure functions (read_ballast_csv reads the file); thread-safe.
 #pragma once

@@ -4,6 +4,8 @@
 //    keys of docs/formats.md: stiffness_n_per_m, empty_deflection_m, progressive_knee_m,
 //    progressive_rate_n_per_m2, linear_range_kg, calibrated_range_kg), numbers locale-free with
 //    10 significant digits, infinity as .inf, each estimate's std as a trailing comment;
+//    check_suspension_yaml() reads it back with the loader's reader, so that a fit the loader
+//    would refuse (a unit error in the ballast data) is not written;
 //  - mass_check(): per step, the total mass the product's static initialisation (eq. 3,
 //    StaticInitializer::mass_from_deflection_kg) gets from the step's mean deflection, once with
 //    the linear model and once with the written (progressive) curve, against the true total
@@ -42,6 +44,12 @@ std::vector<MassCheckRow> mass_check(const SuspensionCalibration& calibration,
 /// The config snippet; header_comment lines (without '#') go on top.
 std::string suspension_yaml(const SuspensionCalibration& calibration,
                             const std::vector<std::string>& header_comment = {});
+
+/// "" when vmassd's config loader accepts `yaml` (a suspension_yaml() snippet) as written: every
+/// key within the loader's own bound for its unit (YamlReader: |stiffness_n_per_m| <= 1e10 N/m,
+/// |progressive_rate_n_per_m2| <= 1e12 N/m^2, ...) and SuspensionParams::validate(); else why
+/// not ("suspension.KEY: ..."). A snippet it refuses must never be written.
+std::string check_suspension_yaml(const std::string& yaml);
 
 /// One JSON object; mass_rows may be empty (no empty mass known).
 std::string calibration_json(const SuspensionCalibration& calibration,
