@@ -46,6 +46,8 @@ std::string_view reason_name(StatusReason r) {
       return "lag_provisional";
     case StatusReason::kLoadUnchecked:
       return "load_unchecked";
+    case StatusReason::kMassImplausible:
+      return "mass_implausible";
   }
   return "unknown";
 }
@@ -77,6 +79,11 @@ std::string Estimate::describe_reason() const {
     text +=
         ": restored after the vehicle was off, when the load may have changed; the mass "
         "starts afresh at the first standstill (or with the drive)";
+  }
+  if (reason == StatusReason::kMassImplausible) {
+    text += ": " + describe_rejection() +
+            "; nothing is published until an estimate is in the band (check the config's "
+            "empty mass and suspension calibration)";
   }
   return text;
 }

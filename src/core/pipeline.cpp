@@ -4,16 +4,12 @@
 #include <cmath>
 
 #include "vmass/core/param_check.hpp"
+#include "vmass/core/plausible_band.hpp"
 
 namespace vmass {
 
 namespace {
 
-// The plausible band of an estimate: no car weighs much less than its kerb mass (fuel and
-// options take some off), nor much above its permitted maximum (overloading happens).
-constexpr double kPlausibleLowPerEmpty = 0.9;
-constexpr double kPlausibleHighPerMax = 1.25;
-constexpr double kPlausibleHighPerEmptyWithoutMax = 3.0;
 constexpr double kNormal95 = 1.959963984540054;  ///< the normal distribution's 97.5 % quantile
 
 }  // namespace
@@ -418,6 +414,9 @@ void Pipeline::refresh_belief() {
   if (estimate_.invalid_inputs != 0) {
     estimate_.status = EstimateStatus::kDegraded;
     estimate_.reason = StatusReason::kInputsInvalid;
+  } else if (!estimate_.mass_known) {
+    estimate_.status = EstimateStatus::kDegraded;
+    estimate_.reason = StatusReason::kMassImplausible;
   } else if (provisional) {
     estimate_.status = EstimateStatus::kConverging;
     estimate_.reason = StatusReason::kLagProvisional;
@@ -549,19 +548,19 @@ void Pipeline::span_challenger() {
 }
 
 void Pipeline::publish_state(const RegressorState& state) {
-  const VehicleParams& v = params_.vehicle;
-  estimate_.plausible_low_kg = kPlausibleLowPerEmpty * v.empty_mass_kg;
-  estimate_.plausible_high_kg = std::isfinite(v.max_mass_kg)
-                                    ? kPlausibleHighPerMax * v.max_mass_kg
-                                    : kPlausibleHighPerEmptyWithoutMax * v.empty_mass_kg;
+  const MassBand band = plausible_mass_band(params_.vehicle);
+  estimate_.plausible_low_kg = band.low_kg;
+  estimate_.plausible_high_kg = band.high_kg;
   estimate_.pairs_used = state.pairs_used;
-  estimate_.mass_known = true;
-  const bool plausible =
-      state.mass_kg >= estimate_.plausible_low_kg && state.mass_kg <= estimate_.plausible_high_kg;
+  const bool plausible = band.contains(state.mass_kg);
   estimate_.plausible = plausible;
   estimate_.implausible_mass_kg = plausible ? 0.0 : state.mass_kg;
   if (!plausible && has_plausible_) return;  // hold the last plausible estimate
-  has_plausible_ = has_plausible_ || plausible;
+  // Never a plausible estimate of this load: no mass at all rather than one vmass would refuse
+  // to restore (refresh_belief() says why).
+  estimate_.mass_known = plausible;
+  if (!plausible) return;
+  has_plausible_ = true;
   const double model_std = model_std_kg(state.mass_kg);
   const double half_width = published_half_width(state);
   estimate_.mass_kg = state.mass_kg;

@@ -226,7 +226,7 @@ struct MainLoop {
   const StatusContext& ctx;
   SystemdNotifier& notifier;
   const std::string& state_path;
-  std::uint64_t fingerprint;
+  const PipelineParams& params;
   double persist_interval_s;
 };
 
@@ -258,7 +258,7 @@ int run_main_loop(const MainLoop& m) {
       next_status = now + daemon::kNsPerSecond;
     }
     if (now >= next_persist) {
-      daemon::save_snapshot(m.state_path, m.shared.snapshot.read(), m.fingerprint, m.shared);
+      daemon::save_snapshot(m.state_path, m.shared.snapshot.read(), m.params, m.shared);
       next_persist = now + persist_ns;
     }
   }
@@ -302,7 +302,7 @@ void join_threads(Threads& t, Shared& shared) {
 /// Bayes batch closed, as every snapshot saves it) into the final state save, the final status.
 /// Returns whether saved.
 bool save_final_state(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
-                      const std::string& path, std::uint64_t fingerprint) {
+                      const std::string& path, const PipelineParams& params) {
   // The estimator thread has stopped: its input table and pipeline can be used here.
   const std::string input_problems = source.input_report();
   if (!input_problems.empty()) spdlog::info("inputs: {}", input_problems);
@@ -312,7 +312,7 @@ bool save_final_state(runtime::InputSource& source, runtime::TickStep& step, Sha
     spdlog::info("open batch flushed into the final state: pairs used {}",
                  final_slot.snapshot.pairs_used);
   }
-  return daemon::save_snapshot(path, final_slot, fingerprint, shared);
+  return daemon::save_snapshot(path, final_slot, params, shared);
 }
 
 void log_start(const StatusContext& ctx, const Plan& plan, const DaemonOptions& options,
@@ -377,7 +377,6 @@ struct Run {
 int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
   runtime::TickStep step(params);
   const std::string state_file = state_path(r.options, r.settings);
-  const std::uint64_t fingerprint = state_fingerprint(params);
   const bool restored =
       !state_file.empty() && !r.options.no_restore && restore_state(state_file, step.pipeline());
   if (r.plan.recorded && !r.plan.max_speed) {  // at max speed the tick driver reads it
@@ -403,12 +402,12 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
   notifier.notify("READY=1\nSTATUS=" +
                   daemon::summary_line(daemon::gather_status(ctx, shared, false)));
   log_start(ctx, r.plan, r.options, r.settings, state_file, estimator, notifier);
-  const int stop_signal = run_main_loop({signals, shared, ctx, notifier, state_file, fingerprint,
-                                         r.settings.daemon.persist_interval_s});
+  const int stop_signal = run_main_loop(
+      {signals, shared, ctx, notifier, state_file, params, r.settings.daemon.persist_interval_s});
   if (stop_signal != 0) spdlog::info("{}: stopping", strsignal(stop_signal));
   notifier.notify("STOPPING=1\nSTATUS=stopping");
   join_threads(threads, shared);
-  const bool saved = save_final_state(r.source, step, shared, state_file, fingerprint);
+  const bool saved = save_final_state(r.source, step, shared, state_file, params);
   const DaemonStatus final_status = daemon::gather_status(ctx, shared, true);
   if (publisher.publish_status(final_status)) shared.published.fetch_add(1);
   log_stop(final_status, saved, publisher, shared);

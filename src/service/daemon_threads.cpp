@@ -14,6 +14,7 @@
 #include "daemon_clock.hpp"
 #include "publish_backoff.hpp"
 #include "vmass/runtime/tick_driver.hpp"
+#include "vmass/service/pipeline_state.hpp"
 #include "vmass/service/receive_schedule.hpp"
 #include "vmass/service/state_store.hpp"
 
@@ -454,20 +455,22 @@ std::string summary_line(const DaemonStatus& s) {
   return buf;
 }
 
-bool save_snapshot(const std::string& path, const SnapshotSlot& slot, std::uint64_t fingerprint,
+bool save_snapshot(const std::string& path, const SnapshotSlot& slot, const PipelineParams& params,
                    Shared& shared) {
-  if (path.empty() || !slot.valid || !slot.snapshot.has_prior) return false;
-  SavedState state;
-  state.snapshot = slot.snapshot;
-  state.saved_time_us = slot.time_us;
-  state.fingerprint = fingerprint;
+  if (path.empty() || !slot.valid) return false;
   std::string error;
-  if (!save_state_file(path, state, &error)) {
-    spdlog::warn("state not saved: {}", error);
-    return false;
+  switch (save_pipeline_state(path, slot.snapshot, slot.time_us, params, &error)) {
+    case StateSave::kSaved:
+      shared.state_saves.fetch_add(1, std::memory_order_relaxed);
+      return true;
+    case StateSave::kNothingToSave:
+      return false;
+    case StateSave::kNotBelievable:
+    case StateSave::kFailed:
+      spdlog::warn("state not saved: {}", error);
+      return false;
   }
-  shared.state_saves.fetch_add(1, std::memory_order_relaxed);
-  return true;
+  return false;
 }
 
 }  // namespace vmass::service::daemon

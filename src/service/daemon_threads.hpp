@@ -113,7 +113,7 @@ DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stoppi
 /// One line for systemd's STATUS= and the log.
 std::string summary_line(const DaemonStatus& s);
 /// Saves the slot's snapshot to `path` ("" = no state file). True when saved.
-bool save_snapshot(const std::string& path, const SnapshotSlot& slot, std::uint64_t fingerprint,
+bool save_snapshot(const std::string& path, const SnapshotSlot& slot, const PipelineParams& params,
                    Shared& shared);
 
 }  // namespace vmass::service::daemon

@@ -16,7 +16,10 @@ StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline)
     out.message = state.error + "; starting fresh";
     return out;
   }
-  const std::string implausible = implausible_state(state.state.snapshot, pipeline.params());
+  std::string implausible = implausible_state(state.state.snapshot, pipeline.params());
+  if (implausible.empty() && state.state.saved_time_us < 0) {
+    implausible = "saved at a negative time " + std::to_string(state.state.saved_time_us) + " us";
+  }
   if (!implausible.empty()) {
     out.message = path + ": saved state not believable (" + implausible + "); starting fresh";
     return out;
@@ -37,6 +40,25 @@ StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline)
                 (pipeline.params().suspension.carries_load() ? "a standstill" : "the drive") +
                 " will re-check the load";
   return out;
+}
+
+StateSave save_pipeline_state(const std::string& path, const PipelineSnapshot& snapshot,
+                              TimeUs saved_time_us, const PipelineParams& params,
+                              std::string* error) {
+  if (!snapshot.has_prior) return StateSave::kNothingToSave;
+  const std::string implausible = implausible_state(snapshot, params);
+  if (!implausible.empty() || saved_time_us < 0) {
+    *error = "not believable (" +
+             (implausible.empty() ? "a negative time " + std::to_string(saved_time_us) + " us"
+                                  : implausible) +
+             "): the state on disk is kept";
+    return StateSave::kNotBelievable;
+  }
+  SavedState state;
+  state.snapshot = snapshot;
+  state.saved_time_us = saved_time_us;
+  state.fingerprint = state_fingerprint(params);
+  return save_state_file(path, state, error) ? StateSave::kSaved : StateSave::kFailed;
 }
 
 }  // namespace vmass::service

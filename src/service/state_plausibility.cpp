@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vmass/core/plausible_band.hpp"
+#include "vmass/core/static_initializer.hpp"
+
 namespace vmass::service {
 namespace {
 
@@ -16,11 +19,7 @@ std::string number(double v) {
 /// Accumulates the first reason a state is not believable.
 class Check {
  public:
-  explicit Check(const VehicleParams& v)
-      : min_mass_kg_(0.5 * v.empty_mass_kg),
-        max_mass_kg_(std::isfinite(v.max_mass_kg)
-                         ? std::max(1.5 * v.max_mass_kg, 5.0 * v.empty_mass_kg)
-                         : 5.0 * v.empty_mass_kg) {}
+  explicit Check(const VehicleParams& v) : band_(plausible_mass_band(v)) {}
 
   void finite(const char* what, double v) {
     if (!std::isfinite(v)) fail(std::string(what) + " is " + number(v));
@@ -29,9 +28,26 @@ class Check {
     if (!(std::isfinite(v) && v > 0.0)) fail(std::string(what) + " " + number(v) + " is not > 0");
   }
   void mass(const char* what, double kg) {
-    if (!(kg >= min_mass_kg_ && kg <= max_mass_kg_)) {
-      fail(std::string(what) + " " + number(kg) + " kg outside [" + number(min_mass_kg_) + ", " +
-           number(max_mass_kg_) + "] kg");
+    if (!band_.contains(kg)) {
+      fail(std::string(what) + " " + number(kg) + " kg outside the plausible band [" +
+           number(band_.low_kg) + ", " + number(band_.high_kg) + "] kg");
+    }
+  }
+  /// A regressor's mass variance: no data from a vehicle's dynamics pins a mass closer than
+  /// 0.1 % per pair (force and acceleration noise), so after n pairs its std is at least
+  /// 0.1 % M / sqrt(n). Below that the state is degenerate: it would publish a zero-width
+  /// interval and no pair would ever move it.
+  void mass_variance(const char* what, double variance_kg2, double mass_kg, long pairs) {
+    const double floor_kg = 1e-3 * std::abs(mass_kg) / std::sqrt(std::max(1.0, double(pairs)));
+    if (!(variance_kg2 >= floor_kg * floor_kg)) {
+      fail(std::string(what) + " std " + number(std::sqrt(std::max(0.0, variance_kg2))) +
+           " kg below the floor " + number(floor_kg) + " kg (0.1 % of the mass / sqrt(pairs))");
+    }
+  }
+  void within(const char* what, double v, double lo, double hi, const char* unit) {
+    if (!(v >= lo && v <= hi)) {
+      fail(std::string(what) + " " + number(v) + " " + unit + " outside [" + number(lo) + ", " +
+           number(hi) + "] " + unit);
     }
   }
   /// A 2x2 covariance, row-major.
@@ -54,7 +70,7 @@ class Check {
   void fail(const std::string& why) {
     if (reason_.empty()) reason_ = why;
   }
-  double min_mass_kg_, max_mass_kg_;
+  MassBand band_;
   std::string reason_;
 };
 
@@ -63,6 +79,7 @@ void check_regressor(const PipelineSnapshot& s, Check& c) {
     c.finite("RLS mu", s.rls_theta[1]);
     c.mass("RLS mass", s.rls_theta[0]);
     c.covariance("RLS covariance", s.rls_covariance);
+    c.mass_variance("RLS mass", s.rls_covariance[0], s.rls_theta[0], s.pairs_used);
     return;
   }
   c.finite("Bayes mu", s.nig_mean[1]);
@@ -70,6 +87,26 @@ void check_regressor(const PipelineSnapshot& s, Check& c) {
   c.covariance("Bayes scaled covariance", s.nig_scaled_covariance);
   c.positive("Bayes shape", s.nig_shape);
   c.positive("Bayes scale", s.nig_scale);
+  // The mass's t-scale squared, (b / a) V[0][0].
+  c.mass_variance("Bayes mass", s.nig_scale / s.nig_shape * s.nig_scaled_covariance[0],
+                  s.nig_mean[0], s.pairs_used);
+}
+
+/// The standstill window the load was measured in: its deflection reads (eq. 3, with the
+/// payload position's prior, as the pipeline reads it) as a mass in the band, and its grade is a
+/// grade (|g sin(grade)| <= g; NaN: unknown).
+void check_reference(const PipelineSnapshot& s, const PipelineParams& params, Check& c) {
+  if (!s.has_reference) return;
+  c.finite("reference deflection", s.reference_deflection_m);
+  c.finite("reference deflection std", s.reference_deflection_std_m);
+  c.within("reference deflection std", s.reference_deflection_std_m, 0.0, 1.0, "m");
+  const StaticInitializer eq3(params.vehicle, params.suspension, params.estimator.static_init);
+  c.mass("reference deflection's static mass (eq. 3)",
+         eq3.static_mass_for(s.reference_deflection_m, s.reference_deflection_std_m).prior.mass_kg);
+  if (!std::isnan(s.reference_grade_accel_mps2)) {
+    const double g = params.vehicle.gravity_mps2;
+    c.within("reference grade acceleration", s.reference_grade_accel_mps2, -g, g, "m/s^2");
+  }
 }
 
 void check_counters(const PipelineSnapshot& s, Check& c) {
@@ -94,10 +131,7 @@ std::string implausible_state(const PipelineSnapshot& s, const PipelineParams& p
   c.finite("prior mu", s.prior.mu_n);
   c.positive("prior mu std", s.prior.mu_std_n);
   check_regressor(s, c);
-  if (s.has_reference) {
-    c.finite("reference deflection", s.reference_deflection_m);
-    c.finite("reference deflection std", s.reference_deflection_std_m);
-  }
+  check_reference(s, params, c);
   check_counters(s, c);
   return c.reason();
 }

@@ -8,6 +8,7 @@
 
 #include "test_drive.hpp"
 #include "vmass/config/config.hpp"
+#include "vmass/core/plausible_band.hpp"
 
 namespace vmass::service {
 namespace {
@@ -44,10 +45,12 @@ TEST(StatePlausibility, EachImplausibleFieldIsRefusedWithItsReason) {
   const PipelineParams p = params();
   PipelineSnapshot s = good_state();
   s.nig_mean[0] = -5000.0;
-  EXPECT_EQ(implausible_state(s, p), "Bayes mass -5000 kg outside [750, 7500] kg");
+  EXPECT_EQ(implausible_state(s, p),
+            "Bayes mass -5000 kg outside the plausible band [1350, 4500] kg");
   s = good_state();
   s.prior.mass_kg = 1e9;
-  EXPECT_EQ(implausible_state(s, p), "prior mass 1e+09 kg outside [750, 7500] kg");
+  EXPECT_EQ(implausible_state(s, p),
+            "prior mass 1e+09 kg outside the plausible band [1350, 4500] kg");
   s = good_state();
   s.nig_scale = std::nan("");
   EXPECT_EQ(implausible_state(s, p), "Bayes scale nan is not > 0");
@@ -62,7 +65,70 @@ TEST(StatePlausibility, EachImplausibleFieldIsRefusedWithItsReason) {
   EXPECT_NE(implausible_state(s, p).find("block counters out of order"), std::string::npos);
   s = good_state();
   s.type = RegressorType::kRls;  // the RLS fields are all zero: no covariance
-  EXPECT_EQ(implausible_state(s, p), "RLS mass 0 kg outside [750, 7500] kg");
+  EXPECT_EQ(implausible_state(s, p), "RLS mass 0 kg outside the plausible band [1350, 4500] kg");
+}
+
+// The band is the one the pipeline publishes in: a state it refuses was never published, and a
+// mass just inside what it publishes is restored.
+TEST(StatePlausibility, TheBandIsThePublishedOne) {
+  const PipelineParams p = params();
+  const MassBand band = plausible_mass_band(p.vehicle);
+  PipelineSnapshot s = good_state();
+  s.nig_mean[0] = band.high_kg;
+  EXPECT_EQ(implausible_state(s, p), "");
+  s.nig_mean[0] = std::nextafter(band.high_kg, 1e300);
+  EXPECT_NE(implausible_state(s, p).find("outside the plausible band"), std::string::npos);
+}
+
+// A posterior narrower than any data could make it would publish a zero-width interval and
+// never move again: refused, as are the degenerate shapes of it.
+TEST(StatePlausibility, ADegenerateVarianceIsRefused) {
+  const PipelineParams p = params();
+  PipelineSnapshot s = good_state();
+  s.nig_scaled_covariance[0] = 1e-30;
+  s.nig_scaled_covariance[1] = s.nig_scaled_covariance[2] = 0.0;
+  EXPECT_NE(implausible_state(s, p).find("Bayes mass std"), std::string::npos)
+      << implausible_state(s, p);
+  s = good_state();
+  s.nig_scale = 1e-300;
+  EXPECT_NE(implausible_state(s, p).find("below the floor"), std::string::npos)
+      << implausible_state(s, p);
+  s = good_state();
+  s.type = RegressorType::kRls;
+  s.rls_theta[0] = 1800.0;
+  s.rls_covariance[0] = 1e-20;
+  s.rls_covariance[3] = 1.0;
+  EXPECT_NE(implausible_state(s, p).find("RLS mass std"), std::string::npos)
+      << implausible_state(s, p);
+  s.rls_covariance[0] = 25.0;  // 5 kg
+  EXPECT_EQ(implausible_state(s, p), "");
+}
+
+// The standstill the load was measured in: a deflection of 5 m reads as millions of kg (eq. 3),
+// and an infinite grade is no grade.
+TEST(StatePlausibility, TheReferenceStandstillIsChecked) {
+  const PipelineParams p = params();
+  PipelineSnapshot s = good_state();
+  s.has_reference = true;
+  s.reference_deflection_m = p.suspension.empty_deflection_m + 0.01;
+  s.reference_deflection_std_m = 1e-4;
+  s.reference_grade_accel_mps2 = 0.1;
+  EXPECT_EQ(implausible_state(s, p), "");
+  s.reference_grade_accel_mps2 = std::nan("");  // unknown
+  EXPECT_EQ(implausible_state(s, p), "");
+  PipelineSnapshot bad = s;
+  bad.reference_deflection_m = 5.0;
+  EXPECT_NE(implausible_state(bad, p).find("reference deflection's static mass (eq. 3)"),
+            std::string::npos)
+      << implausible_state(bad, p);
+  bad = s;
+  bad.reference_grade_accel_mps2 = INFINITY;
+  EXPECT_NE(implausible_state(bad, p).find("reference grade acceleration inf"), std::string::npos)
+      << implausible_state(bad, p);
+  bad = s;
+  bad.reference_deflection_std_m = -1e-3;
+  EXPECT_NE(implausible_state(bad, p).find("reference deflection std"), std::string::npos)
+      << implausible_state(bad, p);
 }
 
 }  // namespace

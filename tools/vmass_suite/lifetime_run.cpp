@@ -70,13 +70,16 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   if (restore.refused) *error = restore.message;
   EstimatorResult r = run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
   pipeline->flush();
-  service::SavedState state;
-  state.snapshot = pipeline->snapshot();
-  state.saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
-  state.fingerprint = service::state_fingerprint(pipeline->params());
-  if (state.snapshot.has_prior && !service::save_state_file(v.state_path, state, error)) {
+  const TimeUs saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
+  std::string save_error;
+  const service::StateSave saved = service::save_pipeline_state(
+      v.state_path, pipeline->snapshot(), saved_time_us, pipeline->params(), &save_error);
+  if (saved == service::StateSave::kFailed) {
+    *error = save_error;
     r.supported = false;
     r.unsupported_reason = *error;
+  } else if (saved == service::StateSave::kNotBelievable && error->empty()) {
+    *error = v.state_path + ": " + save_error;  // reported like a refused restore
   }
   return r;
 }

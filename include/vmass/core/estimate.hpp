@@ -49,6 +49,9 @@ enum class StatusReason : std::uint8_t {
   kLoadUnchecked,             ///< initialising: restored after the vehicle was off, when the
                               ///< load may have changed; the mass starts afresh at the first
                               ///< standstill (or with the drive, without a load sensor)
+  kMassImplausible,           ///< degraded: no estimate of this load has been in the plausible
+                              ///< band (plausible_band.hpp); no mass is published, and
+                              ///< implausible_mass_kg says what the estimator holds
 };
 
 std::string_view status_name(EstimateStatus s);
@@ -73,7 +76,8 @@ struct Estimate {
   InputMask invalid_inputs = 0;  ///< inputs needed but invalid at this tick
   std::array<BlockCounters, kBlockCount> blocks{};
 
-  bool mass_known = false;  ///< false until a prior exists (static or empty-mass)
+  bool mass_known = false;  ///< false until a prior exists (static or empty-mass), and while no
+                            ///< estimate of the load has been plausible (kMassImplausible)
 
   /// Of mass_std_kg, what no amount of driving averages away: the declared accuracy of the
   /// torque scale, the rolling radius and the rotating masses, the accelerometer's pitch, the

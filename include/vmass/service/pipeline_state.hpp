@@ -20,4 +20,18 @@ struct StateRestore {
 
 StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline);
 
+enum class StateSave {
+  kSaved,
+  kNothingToSave,  ///< no prior yet: the file (if any) is left as it is
+  kNotBelievable,  ///< a state restore would refuse (why: *error); the file is left as it is
+  kFailed,         ///< the write failed (why: *error); the file is left as it is
+};
+
+/// Saves the pipeline's snapshot, stamped saved_time_us, as vmassd saves it: only a state that
+/// restore_pipeline_state() would take back (the same checks), so that a state it refuses is
+/// never the one on disk.
+StateSave save_pipeline_state(const std::string& path, const PipelineSnapshot& snapshot,
+                              TimeUs saved_time_us, const PipelineParams& params,
+                              std::string* error);
+
 }  // namespace vmass::service

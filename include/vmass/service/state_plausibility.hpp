@@ -5,12 +5,16 @@
 //
 //   every number finite; standard deviations, variances, the NIG shape and scale > 0;
 //   covariance matrices symmetric (to 1e-9 relative) with a determinant >= 0;
-//   masses (the prior, the regressor's mass) within
-//       [0.5 M_empty, max(1.5 M_max, 5 M_empty)]   (M_max only when the config gives one);
+//   masses (the prior, the regressor's mass) in the band vmass publishes (plausible_band.hpp):
+//       what it would refuse here it never publishes, and the daemon never saves;
+//   the regressor's mass std at least 0.1 % of the mass / sqrt(pairs used): a degenerate
+//       posterior would publish a zero-width interval that no pair moves again;
+//   the reference standstill: its deflection reads (eq. 3) as a mass in the band, its spread
+//       in [0, 1] m, its grade acceleration within +-g (or NaN: unknown);
 //   counters >= 0 and accepted <= candidates <= ticks per block
 //
-// Returns "" for a believable state, else the first reason ("prior mass -5000 kg outside [750,
-// 7500] kg"). Pure; reentrant.
+// Returns "" for a believable state, else the first reason ("prior mass -5000 kg outside the
+// plausible band [1350, 2500] kg"). Pure; reentrant.
 #pragma once
 
 #include <string>
