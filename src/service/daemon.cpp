@@ -28,6 +28,7 @@
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/service/lcm_url.hpp"
 #include "vmass/service/pipeline_state.hpp"
 #include "vmass/service/receive_schedule.hpp"
 #include "vmass/service/state_store.hpp"
@@ -430,7 +431,13 @@ int run_daemon(const DaemonOptions& options) {
     return kExitUsage;
   }
   ServiceSettings settings = settings_load.settings;
-  if (!options.lcm_url.empty()) settings.lcm.url = options.lcm_url;
+  if (!options.lcm_url.empty()) {
+    if (const std::string e = lcm_url_error(options.lcm_url); !e.empty()) {
+      spdlog::error("--lcm-url '{}': {}", options.lcm_url, e);
+      return kExitUsage;
+    }
+    settings.lcm.url = options.lcm_url;
+  }
   const std::optional<Plan> plan = make_plan(options, settings, loaded.config->pipeline);
   if (!plan) return kExitUsage;
   lock_memory(settings);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "vmass/config/yaml_reader.hpp"
+#include "vmass/service/lcm_url.hpp"
 
 namespace vmass::service {
 namespace {
@@ -21,6 +22,7 @@ bool valid_channel(const std::string& name) {
 
 std::string LcmSettings::validate() const {
   if (url.empty()) return "lcm.url: must not be empty";
+  if (const std::string e = lcm_url_error(url); !e.empty()) return "lcm.url: " + e;
   if (!valid_channel(estimate_channel)) return "lcm.estimate_channel: invalid channel name";
   if (!valid_channel(status_channel)) return "lcm.status_channel: invalid channel name";
   if (!valid_channel(pairs_channel)) return "lcm.pairs_channel: invalid channel name";

@@ -151,6 +151,12 @@ def cases(tmp):
                                        samples]))
     out.append(("replay.unknown_estimator", [replay, "--config", config, "--samples", samples,
                                              "--estimator", "kalman"]))
+    out.append(("vmassd.lcm_url_typo", [vmassd, "--config", config, "--samples", samples,
+                                         "--speed", "max", "--no-restore", "--lcm-url",
+                                         "udpm://239.255.76.67:7667?tll=0"]))
+    out.append(("vmassd.config_lcm_provider", [vmassd, "--config", write(
+        "lcm_provider.yaml", BASE_CONFIG + "\nlcm:\n  url: bogus://x\n"), "--samples", samples,
+        "--speed", "max", "--no-restore"]))
     out.append(("replay.stdout_full", [replay, "--config", config, "--samples", samples,
                                        "--out", "-"], "/dev/full"))
     return out
