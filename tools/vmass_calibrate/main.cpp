@@ -101,11 +101,12 @@ std::string read_log_series(const std::string& path, const vmass::Config& config
   log.on_error([&log](const vmass::can::CandumpError& e) {
     if (log.stats().corrupt <= 10) std::cerr << "vmass-calibrate: " << e.message << "\n";
   });
-  constexpr double kTickRateHz = 100.0;
+  // The config's tick rate, as vmassd and vmass-replay sample the same log.
+  const double tick_rate_hz = config.pipeline.estimator.differencing.tick_rate_hz;
   vmass::TimeUs last_update_us = -1;
   vmass::TimeUs t0_us = 0;  // T_0, the first frame's time
   rt::UnpacedClock clock;
-  rt::TickDriver driver(*recording.source, kTickRateHz);
+  rt::TickDriver driver(*recording.source, tick_rate_hz);
   const rt::TickRun run = driver.run(clock, [&](std::int64_t k, vmass::TimeUs t) {
     if (k == 0) t0_us = t;
     const vmass::Sample s = recording.source->sample_at(t);
