@@ -41,6 +41,17 @@ bool parse_asc_id(std::string_view token, int base, CanFrame* f) {
   return true;
 }
 
+constexpr std::uint32_t kMaxAscChannel = 255;
+
+bool is_direction(std::string_view s) { return s == "Rx" || s == "Tx"; }
+
+/// True when the token after a classic line's channel is a CAN id in the log's base, not an
+/// event's word ("Statistic:", "SV:", "J1939TP", ...).
+bool is_frame_word(std::string_view word, int base, CanFrame* scratch) {
+  if (!word.empty() && word.back() == ':') return false;
+  return parse_asc_id(word, base, scratch);
+}
+
 /// Payload length of a CAN FD DLC code.
 int fd_length_of_dlc(std::uint32_t dlc) {
   static constexpr std::array<int, 16> kLength = {0, 1,  2,  3,  4,  5,  6,  7,
@@ -178,18 +189,27 @@ CandumpLine AscParser::parse_timed(std::string_view line, CandumpRecord* record,
   if (!detail::parse_fixed(t[0], 6, &offset_us)) return corrupt(error, "time is not a number");
   if (relative_) offset_us += last_offset_us_;
   last_offset_us_ = offset_us;
+  if (t.count < 2) return corrupt(error, "a time and nothing after it");
   const bool fd = t[1] == "CANFD";
   const std::string_view channel = fd ? t[2] : t[1];
+  // A line is an event only when it names no channel ("Start of measurement", "CAN 1 Status:")
+  // or its channel carries words, not a frame ("1 Statistic: ...", "1 SV: ...", "1 J1939TP ...");
+  // every other line is a frame, read or counted as corrupt, never dropped silently.
+  const bool frame_like = fd || t[2] == "ErrorFrame" || is_direction(t[2]) || is_direction(t[3]);
+  if (!is_digits(channel) && !frame_like) return CandumpLine::kComment;
   std::uint32_t ch = 0;
-  if (!detail::parse_dec(channel, 255, &ch)) return CandumpLine::kComment;       // an event line
-  if (!fd && !t[2].empty() && t[2].back() == ':') return CandumpLine::kComment;  // Statistic: ..
+  if (!is_digits(channel)) return corrupt(error, "channel is not a number");
+  if (!detail::parse_dec(channel, kMaxAscChannel, &ch)) return corrupt(error, "channel above 255");
+  if (t.count < 3) return corrupt(error, "nothing after the channel");
   CanFrame f;
+  if (!frame_like && !is_frame_word(t[2], base_, &f)) {
+    return CandumpLine::kComment;  // a channel event
+  }
+  f = CanFrame{};
   f.time_us = start_us_ + offset_us;
   CandumpLine kind = CandumpLine::kFrame;
   if (!fd && t[2] == "ErrorFrame") {
     f.flags = kError;
-  } else if (!fd && !is_digits(t[2].substr(0, 1)) && t[3] != "Rx" && t[3] != "Tx") {
-    return CandumpLine::kComment;  // a channel event ("1 J1939 ...", "1 SV: ...")
   } else {
     kind = fd ? parse_fd(t, base_, &f, error) : parse_classic(t, base_, &f, error);
   }

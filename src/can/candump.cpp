@@ -59,9 +59,13 @@ const char* parse_timestamp(std::string_view line, std::size_t* at, std::int64_t
   std::size_t p = *at;
   if (line[p] != '(') return "expected '(' opening the timestamp";
   ++p;
+  if (p < line.size() && line[p] == '-') {
+    return "negative time (before 1970): candump -l times are seconds since 1970";
+  }
   std::int64_t sec = 0;
   const std::size_t sec_digits = read_digits(line, &p, 12, &sec);
-  if (sec_digits == 0 || sec_digits > 12) return "expected seconds in the timestamp";
+  if (sec_digits == 0) return "expected seconds in the timestamp";
+  if (sec_digits > 12) return "more than 12 digits of seconds in the timestamp";
   if (p >= line.size() || line[p] != '.') return "expected '.' in the timestamp";
   ++p;
   std::int64_t frac = 0;

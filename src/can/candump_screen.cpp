@@ -67,8 +67,12 @@ CandumpLine CandumpScreenParser::parse(std::string_view line, CandumpRecord* rec
   const Tokens t = detail::split_blanks(line);
   CanFrame f;
   const bool timed = t[0].front() == '(';
-  if (timed && !parse_time(t[0], &f.time_us))
+  if (timed && t[0].substr(0, 2) == "(-") {
+    return corrupt(error, "negative time (before 1970): candump times are seconds since 1970");
+  }
+  if (timed && !parse_time(t[0], &f.time_us)) {
     return corrupt(error, "time is not (SECONDS.FRACTION)");
+  }
   if (!timed && require_time_) {
     return corrupt(error, "no time: record with candump -l (or candump -t a) to replay");
   }

@@ -30,6 +30,17 @@ void append_utf8(std::string& out, std::uint32_t cp) {
   }
 }
 
+/// True when s[pos] ends a line: LF, or a CR that is not the first half of CRLF (old Mac files
+/// end their lines with CR alone; in a CRLF file the CR is a blank before the LF).
+bool is_line_end(std::string_view s, std::size_t pos) {
+  return s[pos] == '\n' || (s[pos] == '\r' && (pos + 1 == s.size() || s[pos + 1] != '\n'));
+}
+
+/// A blank within a line: space, tab, the CR of a CRLF.
+bool is_blank_at(std::string_view s, std::size_t pos) {
+  return s[pos] == ' ' || s[pos] == '\t' || (s[pos] == '\r' && !is_line_end(s, pos));
+}
+
 }  // namespace
 
 bool is_valid_utf8(std::string_view s) {
@@ -77,7 +88,7 @@ std::string cp1252_to_utf8(std::string_view s) {
 }
 
 void Parser::advance() {
-  if (s_[pos_] == '\n') {
+  if (is_line_end(s_, pos_)) {
     ++line_;
     line_start_ = pos_ + 1;
   }
@@ -85,7 +96,7 @@ void Parser::advance() {
 }
 
 void Parser::skip_blanks() {
-  while (!eof() && (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\r')) ++pos_;
+  while (!eof() && is_blank_at(s_, pos_)) ++pos_;
 }
 
 void Parser::skip_ws() {
@@ -97,7 +108,7 @@ void Parser::skip_ws() {
 
 bool Parser::at_line_end() {
   skip_blanks();
-  return eof() || peek() == '\n';
+  return eof() || is_line_end(s_, pos_);
 }
 
 std::string_view Parser::read_word() {
@@ -107,7 +118,7 @@ std::string_view Parser::read_word() {
 }
 
 void Parser::skip_line() {
-  while (!eof() && peek() != '\n') {
+  while (!eof() && !is_line_end(s_, pos_)) {
     if (peek() == '"') {
       std::string ignored;
       if (!read_string_raw(ignored)) return;
@@ -132,7 +143,7 @@ void Parser::skip_statement() {
 }
 
 void Parser::skip_rest_of_line() {
-  while (!eof() && peek() != '\n') ++pos_;
+  while (!eof() && !is_line_end(s_, pos_)) ++pos_;
   if (!eof()) advance();
 }
 
@@ -302,7 +313,11 @@ bool Parser::read_string_raw(std::string& out) {
       pos_ += 2;
       continue;
     }
-    if (c != '\r') out += c;
+    if (c != '\r') {
+      out += c;
+    } else if (is_line_end(s_, pos_)) {
+      out += '\n';  // a CR-only file's line break within a string
+    }
     advance();
   }
   failed_ = true;

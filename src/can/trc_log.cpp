@@ -128,7 +128,10 @@ CandumpLine TrcParser::parse_v1(std::string_view line, CanFrame* f, std::uint32_
     f->flags = kError;
     return CandumpLine::kFrame;
   }
-  if (t[type_at] != "Rx" && t[type_at] != "Tx") return CandumpLine::kComment;  // Warng, ...
+  if (t[type_at] == "Warng") return CandumpLine::kComment;  // a bus warning, no frame
+  if (t[type_at] != "Rx" && t[type_at] != "Tx") {
+    return corrupt(error, "message type is not Rx, Tx, Warng or Error");
+  }
   const std::size_t id_at = type_at + 1;
   return parse_v1_payload(t, id_at, id_at + (version_x10_ >= 13 ? 2 : 1), f, error);
 }
@@ -150,7 +153,10 @@ CandumpLine TrcParser::parse_v2(std::string_view line, CanFrame* f, std::uint32_
     return CandumpLine::kFrame;
   }
   const bool fd = type == "FD" || type == "FB" || type == "FE" || type == "BI";
-  if (!fd && type != "DT" && type != "RR") return CandumpLine::kComment;  // ST, EC, EV, ...
+  if (type == "ST" || type == "EC" || type == "EV") return CandumpLine::kComment;  // no frame
+  if (!fd && type != "DT" && type != "RR") {
+    return corrupt(error, "message type is not DT, FD, FB, FE, BI, RR, ER, ST, EC or EV");
+  }
   if (!parse_trc_id(col(kI), f)) return corrupt(error, "CAN id is not 1 to 8 hex digits");
   std::uint32_t n = 0;
   const bool by_dlc = column_[kLen] < 0;

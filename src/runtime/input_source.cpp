@@ -12,7 +12,7 @@ Sample sample_at(const InputValues& values, TimeUs tick_us, const InputTimeouts&
     const InputMask bit = input_bit(static_cast<Input>(i));
     if ((s.valid & bit) == 0) continue;
     const TimeUs t = values.input_time_us[i];
-    if (t < 0 || tick_us - t > timeouts.timeout_us[i]) s.valid &= ~bit;
+    if (t == signals::kNeverUs || tick_us - t > timeouts.timeout_us[i]) s.valid &= ~bit;
   }
   return s;
 }

@@ -35,9 +35,18 @@ void LogFrameSource::count_frame(const can::CanFrame& frame, std::int64_t positi
 }
 
 void LogFrameSource::report_corrupt(std::int64_t position, const std::string& why) {
+  if (stats_.corrupt == 0) first_corrupt_ = {position, why};
   ++stats_.corrupt;
   const std::string where = can::is_converted_format(format_) ? ":record " : ":";
   if (callback_) callback_({position, path_ + where + std::to_string(position) + ": " + why});
+}
+
+std::string LogFrameSource::no_frames_reason() const {
+  if (stats_.frames > 0 || stats_.corrupt == 0) return "";
+  const std::string unit(this->unit());
+  return path_ + ": no frames: " + std::to_string(stats_.corrupt) + " of " +
+         std::to_string(stats_.lines) + " " + unit + "s could not be read; the first, " + unit +
+         " " + std::to_string(first_corrupt_.line) + ": " + first_corrupt_.message;
 }
 
 std::unique_ptr<LogFrameSource> open_log_frame_source(const std::string& path, std::string* error,

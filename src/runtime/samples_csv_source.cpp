@@ -65,7 +65,7 @@ Sample SamplesCsvSource::sample_at(TimeUs tick_us) {
 
 TimeUs SamplesCsvSource::input_age_us(Input input, TimeUs tick_us) const {
   const TimeUs t = values_.input_time_us[static_cast<int>(input)];
-  return t < 0 ? -1 : tick_us - t;
+  return t == signals::kNeverUs ? -1 : tick_us - t;
 }
 
 }  // namespace vmass::runtime

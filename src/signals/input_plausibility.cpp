@@ -68,7 +68,8 @@ InputVerdict InputPlausibility::check_rate(int i, double value, TimeUs update_us
   Track& t = tracks_[static_cast<std::size_t>(i)];
   const double max_rate = params_.inputs[static_cast<std::size_t>(i)].max_rate_per_s;
   if (update_us != t.last_update_us) {  // a new frame: compared with the previous one
-    const double dt_s = static_cast<double>(update_us - t.last_update_us) * 1e-6;
+    const double dt_s =
+        t.has_update ? static_cast<double>(update_us - t.last_update_us) * 1e-6 : 0.0;
     t.rate_fault = false;
     if (t.has_update && max_rate > 0.0 && dt_s > 0.0 && dt_s <= kMaxRateGapS) {
       const double rate = std::abs(value - t.last_value) / std::max(dt_s, kMinRateDtS);
@@ -102,22 +103,22 @@ InputVerdict InputPlausibility::check_stuck(int i, const Sample& raw, const Samp
     t.frozen_since_us = update_us;
     t.witness_min = w.available ? w.value : kInf;  // empty until the witness is seen
     t.witness_max = w.available ? w.value : -kInf;
-    t.witness_moved_us = -1;
+    t.witness_moved_us = kNeverUs;
     t.speed_min = speed;
     return {};
   }
   if (w.available) {
     t.witness_min = std::min(t.witness_min, w.value);
     t.witness_max = std::max(t.witness_max, w.value);
-    if (t.witness_moved_us < 0 && t.witness_max - t.witness_min >= w.min_span) {
+    if (t.witness_moved_us == kNeverUs && t.witness_max - t.witness_min >= w.min_span) {
       t.witness_moved_us = update_us;
     }
   }
   t.speed_min = std::min(t.speed_min, speed);
   const double frozen_s = static_cast<double>(update_us - t.frozen_since_us) * 1e-6;
   // The input had time to follow its witness (a truck's yaw lags its steering by ~0.5 s).
-  const bool witness_moved =
-      !w.exists || (t.witness_moved_us >= 0 && update_us - t.witness_moved_us >= kResponseUs);
+  const bool witness_moved = !w.exists || (t.witness_moved_us != kNeverUs &&
+                                           update_us - t.witness_moved_us >= kResponseUs);
   if (frozen_s >= stuck_s && witness_moved && t.speed_min >= w.min_speed) {
     return InputVerdict{InputFault::kStuck, frozen_s, stuck_s};
   }

@@ -96,7 +96,7 @@ can::DecodeStatus SignalTable::on_frame(const can::CanFrame& frame, TimeUs time_
 
 bool SignalTable::admit(Watched& w, const can::CanFrame& frame, TimeUs time_us) {
   ++w.counters.frames;
-  const bool resync = w.last_time_us < 0 || time_us - w.last_time_us > w.resync_after_us;
+  const bool resync = w.last_time_us == kNeverUs || time_us - w.last_time_us > w.resync_after_us;
   const bool too_fast = count_timing(w, frame, time_us);
   can::E2eResult result = can::E2eResult::kOk;
   if (w.e2e != nullptr) result = can::check_e2e(*decoder_, *w.e2e, frame, resync, &w.e2e_state);
@@ -114,7 +114,7 @@ bool SignalTable::count_timing(Watched& w, const can::CanFrame& frame, TimeUs ti
   if (frame.len > w.length) ++w.counters.too_long;
   bool too_fast = false;
   if (w.tokens_per_us > 0.0) {
-    if (w.last_time_us < 0) {
+    if (w.last_time_us == kNeverUs) {
       w.tokens = kBurstFrames;
     } else {
       const double elapsed = static_cast<double>(std::max<TimeUs>(0, time_us - w.last_time_us));
@@ -203,16 +203,16 @@ InputState SignalTable::input_state(Input input) const {
   for (int k = 0; k < slot.term_count; ++k) {
     const Term& t = terms_[static_cast<std::size_t>(slot.first_term) + static_cast<std::size_t>(k)];
     s.timeout_us = std::min(s.timeout_us, t.timeout_us);
-    if (t.time_us < 0) {
+    if (t.time_us == kNeverUs) {
       s.received = false;
       s.good = false;
       continue;
     }
     if (!t.good) s.good = false;
     s.value += t.value_si;
-    if (s.time_us < 0 || t.time_us < s.time_us) s.time_us = t.time_us;
+    if (s.time_us == kNeverUs || t.time_us < s.time_us) s.time_us = t.time_us;
   }
-  if (!s.received) s.time_us = -1;
+  if (!s.received) s.time_us = kNeverUs;
   return s;
 }
 
@@ -237,7 +237,7 @@ InputFault SignalTable::evaluate(int i, TimeUs now_us, double* value) {
   v = InputVerdict{};
   for (int k = 0; k < slot.term_count; ++k) {
     const Term& t = terms_[static_cast<std::size_t>(slot.first_term) + static_cast<std::size_t>(k)];
-    if (t.time_us < 0) {
+    if (t.time_us == kNeverUs) {
       v.fault = InputFault::kNotReceived;
       slot.fresh = false;
       return v.fault;
@@ -286,7 +286,7 @@ Sample SignalTable::sample_at(TimeUs now_us) {
 void SignalTable::reset() {
   for (Term& t : terms_) {
     t.value_si = 0.0;
-    t.time_us = -1;
+    t.time_us = kNeverUs;
     t.good = false;
   }
   for (Slot& s : slots_) s.fresh = false;
@@ -294,7 +294,7 @@ void SignalTable::reset() {
     w.e2e_state = can::E2eState{};
     w.validity =
         can::MessageValidity(mapping_.protection.invalid_after, mapping_.protection.valid_after);
-    w.last_time_us = -1;
+    w.last_time_us = kNeverUs;
   }
   verdicts_.fill(InputVerdict{});
 }

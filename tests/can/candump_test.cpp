@@ -122,7 +122,10 @@ TEST(Candump, TimestampsAreExactToTheMicrosecond) {
   EXPECT_EQ(parse_ok("(000000000000.000001) can0 123#").frame.time_us, 1);
   EXPECT_EQ(parse_ok("(0.000000999) can0 123#").frame.time_us, 0);  // nanoseconds truncated
   EXPECT_EQ(parse_ok("(1700000000.100000) can0 123#").frame.time_us, 1700000000100000);
-  EXPECT_EQ(parse_error("(1234567890123.000000) can0 123#"), "expected seconds in the timestamp");
+  EXPECT_EQ(parse_error("(1234567890123.000000) can0 123#"),
+            "more than 12 digits of seconds in the timestamp");
+  EXPECT_EQ(parse_error("(-50.000000) can0 123#"),
+            "negative time (before 1970): candump -l times are seconds since 1970");
   EXPECT_EQ(parse_error("(.000000) can0 123#"), "expected seconds in the timestamp");
   EXPECT_EQ(parse_error("(1.0000000000) can0 123#"), "timestamp needs 6 or 9 fractional digits");
   EXPECT_EQ(parse_error("(1.0000000) can0 123#"), "timestamp needs 6 or 9 fractional digits");

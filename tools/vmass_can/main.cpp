@@ -71,10 +71,12 @@ void append_number(std::string& out, double v) {
 
 void append_time(std::string& out, std::int64_t time_us) {
   char buf[40];
-  const std::int64_t sec = time_us / 1000000;
-  const std::int64_t usec = time_us % 1000000;
-  std::snprintf(buf, sizeof buf, "%lld.%06lld", static_cast<long long>(sec),
-                static_cast<long long>(usec < 0 ? -usec : usec));
+  // Before 1970 the time is negative: the sign, then the magnitude's seconds and fraction.
+  const std::uint64_t magnitude =
+      time_us < 0 ? 0 - static_cast<std::uint64_t>(time_us) : static_cast<std::uint64_t>(time_us);
+  std::snprintf(buf, sizeof buf, "%s%llu.%06llu", time_us < 0 ? "-" : "",
+                static_cast<unsigned long long>(magnitude / 1000000),
+                static_cast<unsigned long long>(magnitude % 1000000));
   out += buf;
 }
 
@@ -265,7 +267,12 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
             << stats.error_frames << " error frames, " << cs.corrupt << " corrupt "
             << source->unit() << "s\n";
   if (dbc_errors) return vmass::tools::kExitUsage;
-  if (source->problem().empty()) return vmass::tools::kExitOk;
+  if (source->problem().empty()) {
+    const std::string no_frames = source->no_frames_reason();  // not one line could be read
+    if (no_frames.empty()) return vmass::tools::kExitOk;
+    std::cerr << "vmass-can decode: " << no_frames << "\n";
+    return vmass::tools::kExitUsage;
+  }
   // A converter's failure was reported with the records; a read error is said here.
   if (!vmass::can::is_converted_format(source->format())) std::cerr << source->problem() << "\n";
   return vmass::tools::kExitFailure;

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "replay_run.hpp"
+#include "vmass/io/regular_file.hpp"
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/log_frame_source.hpp"
 
@@ -17,22 +18,44 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A folder's *.log files, sorted by name.
-std::vector<std::string> logs_in(const fs::path& dir) {
-  std::vector<std::string> logs;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
-    if (e.is_regular_file() && e.path().extension() == ".log") logs.push_back(e.path().string());
+/// A folder's *.log files that are regular files, sorted by name; the other *.log entries into
+/// *skipped as "path: why". "" or why the folder cannot be read.
+std::string logs_in(const fs::path& dir, std::vector<std::string>* logs,
+                    std::vector<std::string>* skipped) {
+  std::error_code ec;
+  std::vector<std::string> found;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() == ".log") found.push_back(it->path().string());
   }
-  std::sort(logs.begin(), logs.end());
-  return logs;
+  if (ec) return dir.string() + ": cannot read the folder: " + ec.message();
+  std::sort(found.begin(), found.end());
+  for (std::string& path : found) {
+    if (std::string why = io::check_input_file(path, false); !why.empty()) {
+      skipped->push_back(path + ": skipped: " + why + " (a folder gives its regular *.log files)");
+    } else {
+      logs->push_back(std::move(path));
+    }
+  }
+  return "";
 }
 
-/// The paths a list file names; "" or why it cannot be read.
+/// Longest line of a list of logs (a path is at most PATH_MAX, 4096 bytes).
+constexpr std::size_t kMaxListLineBytes = 4096;
+
+/// The paths a list file names; "" or why it cannot be read ("list:LINE: why" for a line).
 std::string read_list(const std::string& list_file, std::vector<std::string>* paths) {
-  std::ifstream in(list_file);
-  if (!in) return list_file + ": cannot read the list of logs";
-  std::string line;
-  while (std::getline(in, line)) {
+  const io::FileText file = io::read_regular_file(list_file, io::kMaxListBytes, "list of logs");
+  if (!file.ok()) return file.error;
+  std::size_t begin = 0;
+  for (int line_no = 1; begin < file.text.size(); ++line_no) {
+    const std::size_t eol = std::min(file.text.find('\n', begin), file.text.size());
+    std::string line = file.text.substr(begin, eol - begin);
+    begin = eol + 1;
+    const std::string where = list_file + ":" + std::to_string(line_no) + ": ";
+    if (line.size() > kMaxListLineBytes) {
+      return where + "line longer than " + std::to_string(kMaxListLineBytes) + " bytes";
+    }
+    if (line.find('\0') != std::string::npos) return where + "a NUL byte: not a list of paths";
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
     if (!line.empty() && line.front() != '#') paths->push_back(line);
   }
@@ -42,6 +65,12 @@ std::string read_list(const std::string& list_file, std::vector<std::string>* pa
 std::string csv_path_for(const std::string& log, const std::string& out_dir) {
   if (out_dir.empty()) return "";
   return (fs::path(out_dir) / fs::path(log).stem()).string() + ".csv";
+}
+
+/// Removes an output, when it is a regular file (never a device or a FIFO).
+void remove_output(const std::string& path) {
+  std::error_code ec;
+  if (!path.empty() && fs::is_regular_file(fs::symlink_status(path, ec))) fs::remove(path, ec);
 }
 
 FleetLogResult replay_one(const std::string& path, const signals::CanInputs& can,
@@ -65,13 +94,20 @@ FleetLogResult replay_one(const std::string& path, const signals::CanInputs& can
   ReplaySummary summary(std::nullopt);
   runtime::TickRun run;
   play_recording(source, step, std::nullopt, &summary, writer.get(), &run);
-  if (std::string failed = source.read_error(); !failed.empty()) {
-    r.error = std::move(failed);  // the log could not be read to its end
+  std::string failed = source.read_error();             // the log could not be read to its end
+  if (failed.empty()) failed = log.no_frames_reason();  // not one line could be read
+  if (!failed.empty()) {
+    if (writer) writer->close();
+    remove_output(csv_path);
+    r.error = std::move(failed);
     return r;
   }
   // The end of the log: the open Bayes batch enters the final estimate, as with --log.
   if (step.pipeline().flush()) summary.finish(step.pipeline().estimate());
-  if (writer && !writer->close()) r.error = csv_path + ": write failed";
+  if (writer && !writer->close()) {
+    r.error = csv_path + ": write failed (the file is incomplete)";
+    return r;
+  }
   r.frames = log.stats().frames;
   r.corrupt_lines = log.stats().corrupt;
   r.estimator = std::string(step.pipeline().regressor().name());
@@ -82,7 +118,7 @@ FleetLogResult replay_one(const std::string& path, const signals::CanInputs& can
 }  // namespace
 
 std::string collect_logs(const std::vector<std::string>& paths, const std::string& list_file,
-                         std::vector<std::string>* logs) {
+                         std::vector<std::string>* logs, std::vector<std::string>* skipped) {
   std::vector<std::string> named = paths;
   if (!list_file.empty()) {
     if (std::string e = read_list(list_file, &named); !e.empty()) return e;
@@ -90,12 +126,13 @@ std::string collect_logs(const std::vector<std::string>& paths, const std::strin
   for (const std::string& p : named) {
     std::error_code ec;
     if (fs::is_directory(p, ec)) {
-      const std::vector<std::string> in_dir = logs_in(p);
-      logs->insert(logs->end(), in_dir.begin(), in_dir.end());
-    } else if (fs::exists(p, ec)) {
-      logs->push_back(p);
-    } else {
+      if (std::string e = logs_in(p, logs, skipped); !e.empty()) return e;
+    } else if (!fs::exists(p, ec)) {
       return p + ": no such log or folder";
+    } else if (std::string why = io::check_input_file(p, false); !why.empty()) {
+      return p + ": " + why + ": a log named here must be a regular file or a folder";
+    } else {
+      logs->push_back(p);
     }
   }
   if (logs->empty()) return "no logs found (a folder gives its *.log files)";

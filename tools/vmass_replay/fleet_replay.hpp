@@ -33,10 +33,13 @@ struct FleetPlan {
 };
 
 /// The logs `paths` names (a file as it is, a folder as its *.log files sorted by name), then
-/// those listed one per line in `list_file` ("" for none; blank lines and '#' comments skipped).
-/// "" or why they cannot be collected (a path that does not exist, no log at all).
+/// those listed one per line in `list_file` ("" for none; blank lines and '#' comments skipped;
+/// read whole, a regular file of at most io::kMaxListBytes). A log named must be a regular file;
+/// a folder's *.log entries that are not (FIFOs, folders, devices, dangling links) go into
+/// *skipped as "path: skipped: why". "" or why they cannot be collected (a path that does not
+/// exist or is not a regular file, a list that cannot be read, no log at all).
 std::string collect_logs(const std::vector<std::string>& paths, const std::string& list_file,
-                         std::vector<std::string>* logs);
+                         std::vector<std::string>* logs, std::vector<std::string>* skipped);
 
 /// "" or why the per-log estimate CSVs in out_dir would overwrite each other (two logs with
 /// the same stem).

@@ -133,6 +133,12 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
+/// Removes an output this run wrote, when it is a regular file (never /dev/null or a FIFO).
+void remove_output(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_regular_file(fs::symlink_status(path, ec))) fs::remove(path, ec);
+}
+
 /// The recording as an InputSource; null (and a message) when it cannot be read.
 std::unique_ptr<rt::InputSource> open_input(const Options& o, const vmass::Config& config,
                                             rt::LogFrameSource** log) {
@@ -183,13 +189,18 @@ void report_input(const Options& o, const rt::InputSource& source, const rt::Log
   }
   const auto& can = dynamic_cast<const rt::CanInputSource&>(source);
   const vmass::signals::SignalTableCounters& c = can.table().counters();
+  const vmass::can::CandumpStats& lines = log->stats();
   std::cerr << "vmass-replay: " << o.log_path << " (" << vmass::can::log_format_name(log->format())
-            << "): " << log->stats().frames << " frames, " << log->stats().corrupt << " corrupt "
-            << log->unit() << "s; decoded " << c.decoded << ", unknown id " << c.unknown_id
-            << ", too short " << c.malformed << ", error frames " << c.error_frames << "\n";
+            << "): " << lines.frames << " frames, " << lines.corrupt << " corrupt " << log->unit()
+            << "s, " << lines.comments << " " << log->unit()
+            << "s without a frame (headers, comments, events); decoded " << c.decoded
+            << ", unknown id " << c.unknown_id << ", too short " << c.malformed << ", error frames "
+            << c.error_frames << "\n";
   const std::string inputs = can.input_report();
   if (!inputs.empty()) std::cerr << "vmass-replay: inputs: " << inputs << "\n";
-  if (!run.any_record) std::cerr << "vmass-replay: " << o.log_path << ": no frames\n";
+  if (!run.any_record && log->no_frames_reason().empty()) {
+    std::cerr << "vmass-replay: " << o.log_path << ": no frames\n";
+  }
 }
 
 /// The truth, when --truth names one. False (and a message) when it cannot be read.
@@ -247,11 +258,16 @@ int replay_one_input(const Options& o, const vmass::Config& config,
     std::cerr << "vmass-replay: " << failed << "\n";  // the run did not read its whole input
     return kExitFailure;
   }
+  std::string bad_input;
   if (!refusal.empty()) {
-    std::cerr << "vmass-replay: " << o.truth_path << ": not the truth of " << o.input_path() << ": "
-              << refusal << "\n";
+    bad_input = o.truth_path + ": not the truth of " + o.input_path() + ": " + refusal;
+  } else if (log != nullptr) {
+    bad_input = log->no_frames_reason();  // not one line of the log could be read
+  }
+  if (!bad_input.empty()) {
+    std::cerr << "vmass-replay: " << bad_input << "\n";
     if (writer) writer->close();
-    if (!csv_path.empty()) fs::remove(csv_path);  // nothing of this run is worth keeping
+    if (!csv_path.empty()) remove_output(csv_path);  // nothing of this run is worth keeping
     return kExitUsage;
   }
   // The end of the input: the open Bayes batch enters the final estimate (the CSV keeps one
@@ -272,7 +288,8 @@ int replay_one_input(const Options& o, const vmass::Config& config,
 }
 
 /// How much driving the logs held and how fast it went, on stderr.
-void report_many(const std::vector<vmass::FleetLogResult>& results, int jobs, double seconds) {
+void report_many(const std::vector<vmass::FleetLogResult>& results, std::size_t skipped, int jobs,
+                 double seconds) {
   double driving_s = 0.0;
   long failed = 0;
   for (const vmass::FleetLogResult& r : results) {
@@ -282,9 +299,9 @@ void report_many(const std::vector<vmass::FleetLogResult>& results, int jobs, do
   const double n = static_cast<double>(results.size());
   char line[256];
   std::snprintf(line, sizeof line,
-                "vmass-replay: %zu logs (%ld failed), %.2f h of driving in %.2f s with %d jobs: "
-                "%.1f logs/s, %.2f h of driving per second\n",
-                results.size(), failed, driving_s / 3600.0, seconds, jobs, n / seconds,
+                "vmass-replay: %zu logs (%ld failed, %zu skipped), %.2f h of driving in %.2f s "
+                "with %d jobs: %.1f logs/s, %.2f h of driving per second\n",
+                results.size(), failed, skipped, driving_s / 3600.0, seconds, jobs, n / seconds,
                 driving_s / 3600.0 / seconds);
   std::cerr << line;
 }
@@ -293,7 +310,9 @@ void report_many(const std::vector<vmass::FleetLogResult>& results, int jobs, do
 int replay_many_logs(const Options& o, const vmass::Config& config,
                      const vmass::PipelineParams& params) {
   vmass::FleetPlan plan;
-  std::string error = vmass::collect_logs(o.logs, o.log_list, &plan.logs);
+  std::vector<std::string> skipped;
+  std::string error = vmass::collect_logs(o.logs, o.log_list, &plan.logs, &skipped);
+  for (const std::string& why : skipped) std::cerr << "vmass-replay: warning: " << why << "\n";
   if (error.empty() && !o.out_dir.empty()) error = vmass::check_csv_names(plan.logs);
   vmass::signals::CanInputsLoad can = vmass::signals::load_can_inputs(config);
   if (error.empty() && !can.ok()) error = can.error;
@@ -325,7 +344,7 @@ int replay_many_logs(const Options& o, const vmass::Config& config,
     }
   }
   std::cout << table;
-  report_many(results, plan.jobs, took.count());
+  report_many(results, skipped.size(), plan.jobs, took.count());
   return all_ok ? kExitOk : kExitFailure;
 }
 

@@ -30,6 +30,7 @@ constexpr std::size_t kMaxConfigBytes = 4u << 20;   ///< config.yaml
 constexpr std::size_t kMaxDbcBytes = 64u << 20;     ///< a DBC (real ones are below 10 MB)
 constexpr std::size_t kMaxStateBytes = 1u << 20;    ///< the daemon's state file
 constexpr std::size_t kMaxTableBytes = 256u << 20;  ///< a CSV read whole (ballast, truth)
+constexpr std::size_t kMaxListBytes = 16u << 20;    ///< a list of paths (vmass-replay --log-list)
 
 struct FileText {
   std::string text;

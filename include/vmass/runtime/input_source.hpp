@@ -42,6 +42,7 @@
 #include "vmass/runtime/clock_guard.hpp"
 #include "vmass/runtime/input_health.hpp"
 #include "vmass/runtime/seqlock.hpp"
+#include "vmass/signals/input_verdict.hpp"
 
 namespace vmass::runtime {
 
@@ -59,10 +60,13 @@ struct InputRecord {
 /// Latest value, time and validity of every input of a samples CSV (trivially copyable).
 struct InputValues {
   Sample latest;  ///< values and validity bits of the latest update of each input
-  TimeUs input_time_us[kInputCount] = {-1, -1, -1, -1, -1, -1,
-                                       -1, -1, -1, -1, -1, -1};  ///< -1: never
-  TimeUs last_update_us = -1;  ///< time of the latest record applied (input clock)
-  std::uint64_t updates = 0;   ///< records applied
+  /// signals::kNeverUs: never (any other value is a time, before 1970 too).
+  TimeUs input_time_us[kInputCount] = {signals::kNeverUs, signals::kNeverUs, signals::kNeverUs,
+                                       signals::kNeverUs, signals::kNeverUs, signals::kNeverUs,
+                                       signals::kNeverUs, signals::kNeverUs, signals::kNeverUs,
+                                       signals::kNeverUs, signals::kNeverUs, signals::kNeverUs};
+  TimeUs last_update_us = signals::kNeverUs;  ///< the latest record applied (input clock)
+  std::uint64_t updates = 0;                  ///< records applied
 };
 static_assert(kInputCount == 12, "update InputValues::input_time_us's initialiser");
 

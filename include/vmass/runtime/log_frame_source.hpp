@@ -50,6 +50,11 @@ class LogFrameSource : public FrameSource {
   std::string_view unit() const { return can::is_converted_format(format_) ? "record" : "line"; }
   /// The interface (channel) of the last frame read, e.g. "can0".
   virtual std::string_view interface_name() const = 0;
+  /// The first line (record) skipped as corrupt: its number and why (line 0 when none was).
+  const can::CandumpError& first_corrupt() const { return first_corrupt_; }
+  /// "" when the log gave a frame or skipped no line; else why it gave none, for a message:
+  /// "path: no frames: 3 of 3 lines could not be read; the first, line 1: why".
+  std::string no_frames_reason() const;
 
  protected:
   LogFrameSource(std::string path, can::LogFormat format)
@@ -67,6 +72,7 @@ class LogFrameSource : public FrameSource {
   can::CandumpStats stats_;
   std::int64_t position_ = 0;
   std::string problem_;
+  can::CandumpError first_corrupt_;  ///< message: the reason alone
   std::function<void(const can::CandumpError&)> callback_;
 };
 

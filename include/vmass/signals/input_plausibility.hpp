@@ -77,7 +77,7 @@ class InputPlausibility {
   struct Track {  ///< per input
     bool has_update = false;
     double last_value = 0.0;
-    TimeUs last_update_us = -1;
+    TimeUs last_update_us = kNeverUs;
     bool rate_fault = false;  ///< the held value broke the rate limit
     InputVerdict rate_verdict;
     // stuck
@@ -85,8 +85,8 @@ class InputPlausibility {
     double frozen_value = 0.0;
     TimeUs frozen_since_us = 0;
     double witness_min = 0.0, witness_max = 0.0, speed_min = 0.0;
-    TimeUs witness_moved_us = -1;   ///< when the witness first spanned enough, -1: not yet
-    TimeUs counted_update_us = -2;  ///< the update last counted as implausible
+    TimeUs witness_moved_us = kNeverUs;   ///< when the witness first spanned enough
+    TimeUs counted_update_us = kNeverUs;  ///< the update last counted as implausible
   };
   struct Row {  ///< one tick of the cross-check window
     TimeUs t = 0;

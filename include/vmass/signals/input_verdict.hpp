@@ -23,6 +23,11 @@
 
 namespace vmass::signals {
 
+/// "Never" for a time: the most negative microsecond, so that every time a recording can hold,
+/// before 1970 too (a log's times are negative then), is a real time. Compare with ==, and never
+/// subtract it from a time.
+inline constexpr std::int64_t kNeverUs = INT64_MIN;
+
 enum class InputFault : std::uint8_t {
   kNone = 0,
   kNotReceived,

@@ -87,11 +87,11 @@ struct SignalTableCounters {
 /// The state of one input (see the header comment).
 struct InputState {
   bool mapped = false;
-  bool received = false;  ///< every term has been received at least once
-  bool good = false;      ///< received, and every term's last value was good
-  double value = 0.0;     ///< SI, sum of the terms' last good values + offset
-  TimeUs time_us = -1;    ///< time of the oldest term's last frame; -1 when not received
-  TimeUs timeout_us = 0;  ///< the smallest timeout of its terms
+  bool received = false;      ///< every term has been received at least once
+  bool good = false;          ///< received, and every term's last value was good
+  double value = 0.0;         ///< SI, sum of the terms' last good values + offset
+  TimeUs time_us = kNeverUs;  ///< time of the oldest term's last frame; kNeverUs: not received
+  TimeUs timeout_us = 0;      ///< the smallest timeout of its terms
 };
 
 class SignalTable {
@@ -151,7 +151,7 @@ class SignalTable {
     int message_slot = 0;  ///< into messages_
     // state
     double value_si = 0.0;
-    TimeUs time_us = -1;
+    TimeUs time_us = kNeverUs;
     bool good = false;
   };
   struct Slot {
@@ -166,7 +166,7 @@ class SignalTable {
     can::E2eState e2e_state;
     can::MessageValidity validity{5, 2};
     TimeUs resync_after_us = 0;  ///< a gap this long restarts the alive counter
-    TimeUs last_time_us = -1;
+    TimeUs last_time_us = kNeverUs;
     double tokens = 0.0;         ///< too-fast token bucket (frames)
     double tokens_per_us = 0.0;  ///< 0: no cycle time, not checked
     std::uint8_t length = 0;     ///< DBC length
