@@ -179,7 +179,8 @@ class Parser {
   /// Per message: signal name -> its first signal (statements name signals: a linear search
   /// per statement made a message of 45,000 signals quadratic). Rebuilt after check_layout.
   std::vector<std::unordered_map<std::string, int>> signal_index_;
-  std::unordered_set<std::uint32_t> ignored_ids_;  // VECTOR__INDEPENDENT_SIG_MSG
+  std::unordered_set<std::size_t> signals_left_out_;  ///< messages past kMaxSignalsPerMessage
+  std::unordered_set<std::uint32_t> ignored_ids_;     // VECTOR__INDEPENDENT_SIG_MSG
   std::unordered_set<long> explicit_cycle_, explicit_format_;
   std::vector<MulValEntry> mul_vals_;
 };

@@ -191,9 +191,12 @@ void Parser::parse_sg() {
   const auto msg = static_cast<std::size_t>(current_message_);
   Message& m = db_.messages[msg];
   if (m.signals.size() >= kMaxSignalsPerMessage) {
-    error_at(line, "signal " + sg.name + ": message " + m.name + " has more than " +
-                       std::to_string(kMaxSignalsPerMessage) +
-                       " signals (vmass reads at most that many; the rest are left out)");
+    // One error per message, at its first signal left out: not one per signal.
+    if (signals_left_out_.insert(msg).second) {
+      error_at(line, "signal " + sg.name + ": message " + m.name + " has more than " +
+                         std::to_string(kMaxSignalsPerMessage) +
+                         " signals (vmass reads at most that many; the rest are left out)");
+    }
     return;
   }
   signal_index_[msg].emplace(sg.name, static_cast<int>(m.signals.size()));

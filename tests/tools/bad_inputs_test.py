@@ -38,6 +38,8 @@ BAD_DBC = {
     "zero_length_signal": GOOD_DBC.replace("0|16@1+", "0|0@1+"),
     "negative_dlc": GOOD_DBC.replace("Speed: 8", "Speed: -1"),
     "lowercase_switch": GOOD_DBC + "BO_ 300 Muxed: 8 ECU\n SG_ Page m : 0|2@1+ (1,0) [0|3] \"\" ECU\n SG_ Value m2 : 8|8@1+ (1,0) [0|255] \"\" ECU\n",
+    "many_multiplexed": GOOD_DBC + "BO_ 300 Big: 8 ECU\n SG_ Page M : 0|16@1+ (1,0) [0|65535] \"\" ECU\n"
+    + "".join(f" SG_ S{i} m{i} : 16|16@1+ (1,0) [0|0] \"\" ECU\n" for i in range(5000)),
     "two_errors": 'VERSION ""\nBO_ Speed: 8 ECU\nBO_ 300 X: 8 ECU\n SG_ Y : z|8@1+ (1,0) [0|255] "" ECU\n',
 }
 
@@ -151,6 +153,22 @@ def cases(tmp):
                                        samples]))
     out.append(("replay.unknown_estimator", [replay, "--config", config, "--samples", samples,
                                              "--estimator", "kalman"]))
+    # Logs, through the CAN-log golden's config and DBC.
+    can_config = os.path.join(SRC, "tests/data/golden/paper_exp2_can/config.yaml")
+    out.append(("replay.log_list_dev_zero", [replay, "--config", can_config,
+                                             "--log-list", "/dev/zero"]))
+    fifo = os.path.join(tmp, "p.log")
+    os.mkfifo(fifo)
+    out.append(("replay.logs_fifo", [replay, "--config", can_config, "--logs", fifo]))
+    out.append(("replay.log_list_nul", [replay, "--config", can_config, "--log-list",
+                                        write("nul.list", b"a.log\n\0x\n")]))
+    out.append(("replay.log_negative_times", [replay, "--config", can_config, "--log",
+                                              write("n.log", "(-50.000000) can0 123#00\n")]))
+    out.append(("replay.log_huge_times", [replay, "--config", can_config, "--log", write(
+        "h.log", "(9000000000000000.000000) can0 123#00\n")]))
+    out.append(("replay.asc_channel_256", [replay, "--config", can_config, "--log", write(
+        "c.asc", "date Wed Jan 10 10:55:25.123 am 2024\nbase hex  timestamps absolute\n"
+        "   0.015991 256  123  Rx   d 1 01\n")]))
     out.append(("vmassd.lcm_url_typo", [vmassd, "--config", config, "--samples", samples,
                                          "--speed", "max", "--no-restore", "--lcm-url",
                                          "udpm://239.255.76.67:7667?tll=0"]))
