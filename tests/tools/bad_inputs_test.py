@@ -141,6 +141,11 @@ def cases(tmp):
     out.append(("truth.other_time_base", [replay, "--config", config, "--samples", samples,
                                           "--truth", write("truth_late.csv",
                                                            "time_s,mass_kg\n5000,1500\n6000,1500\n")]))
+    # An empty deflection written as a ride height: the static mass is -1363 kg; no mass at all
+    # is published, and the warning says why (exit 0: the run itself went through).
+    out.append(("replay.ride_height_as_empty_deflection", [replay, "--config", write(
+        "ride_height.yaml", config_with("  empty_deflection_m: 0.0108872444444",
+                                        "  empty_deflection_m: 0.35")), "--samples", samples]))
     out.append(("vmassd.speed_tiny", [vmassd, "--config", config, "--samples", samples,
                                       "--speed", "1e-300"]))
     out.append(("vmassd.speed_text", [vmassd, "--config", config, "--samples", samples,

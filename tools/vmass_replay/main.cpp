@@ -279,6 +279,11 @@ int replay_one_input(const Options& o, const vmass::Config& config,
   }
   const std::string name(step.pipeline().regressor().name());
   std::cout << (o.json ? summary.json(name) + "\n" : summary.table(name));
+  // No believable mass at the end: the summary says so; the diagnostics say it too.
+  const vmass::Estimate& last = step.pipeline().estimate();
+  if (last.reason == vmass::StatusReason::kMassImplausible) {
+    std::cerr << "vmass-replay: warning: no mass published: " << last.describe_reason() << "\n";
+  }
   if (o.plot_path.empty()) return kExitOk;
   const bool plotted = plot(o, csv_path, name);
   if (o.out_path.empty()) fs::remove(csv_path);
