@@ -6,6 +6,20 @@
 #include "vmass/service/state_store.hpp"
 
 namespace vmass::service {
+namespace {
+
+/// "" when restore would take the state back, else why not (implausible_state(), and a time
+/// that a tick never has).
+std::string unbelievable(const PipelineSnapshot& snapshot, TimeUs saved_time_us,
+                         const PipelineParams& params) {
+  std::string why = implausible_state(snapshot, params);
+  if (why.empty() && saved_time_us < 0) {
+    why = "saved at a negative time " + std::to_string(saved_time_us) + " us";
+  }
+  return why;
+}
+
+}  // namespace
 
 StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline) {
   StateRestore out;
@@ -16,10 +30,8 @@ StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline)
     out.message = state.error + "; starting fresh";
     return out;
   }
-  std::string implausible = implausible_state(state.state.snapshot, pipeline.params());
-  if (implausible.empty() && state.state.saved_time_us < 0) {
-    implausible = "saved at a negative time " + std::to_string(state.state.saved_time_us) + " us";
-  }
+  const std::string implausible =
+      unbelievable(state.state.snapshot, state.state.saved_time_us, pipeline.params());
   if (!implausible.empty()) {
     out.message = path + ": saved state not believable (" + implausible + "); starting fresh";
     return out;
@@ -46,12 +58,9 @@ StateSave save_pipeline_state(const std::string& path, const PipelineSnapshot& s
                               TimeUs saved_time_us, const PipelineParams& params,
                               std::string* error) {
   if (!snapshot.has_prior) return StateSave::kNothingToSave;
-  const std::string implausible = implausible_state(snapshot, params);
-  if (!implausible.empty() || saved_time_us < 0) {
-    *error = "not believable (" +
-             (implausible.empty() ? "a negative time " + std::to_string(saved_time_us) + " us"
-                                  : implausible) +
-             "): the state on disk is kept";
+  const std::string implausible = unbelievable(snapshot, saved_time_us, params);
+  if (!implausible.empty()) {
+    *error = "not believable (" + implausible + "): the state on disk is kept";
     return StateSave::kNotBelievable;
   }
   SavedState state;

@@ -399,7 +399,8 @@ TEST_F(DaemonTest, DamagedStateFilesAreRefusedWithTheirReasonAndReplaced) {
       {"truncated", text.substr(0, text.size() / 2), "no checksum line (truncated file?)"},
       {"garbled", garbled, "checksum mismatch (corrupt file)"},
       {"implausible", absurd_text,
-       "saved state not believable (Bayes mass -5000 kg outside the plausible band [1350, 4500] kg)"},
+       "saved state not believable (Bayes mass -5000 kg outside the plausible band [1350, 4500] "
+       "kg)"},
   };
   for (const Case& k : cases) {
     const std::string state = path(std::string(k.name) + ".state");
