@@ -16,21 +16,40 @@ std::string join(const std::string& path, const std::string& key) {
 /// reference: nested anchors make a 2.6 kB text a tree of billions (the "billion laughs"), which
 /// would take hours to walk. Real configs are a few hundred nodes.
 constexpr long kMaxYamlNodes = 100000;
+/// Levels the walk descends at most. The parser bounds the nesting of the text, but an alias can
+/// name the node it sits in (`&a [*a]`): a cycle, which no depth-first walk leaves. Real configs
+/// are four levels deep.
+constexpr int kMaxYamlDepth = 64;
 
-/// Depth-first; "" or the first duplicate's error, or the error of a tree too large to walk.
-/// Depth is bounded by yaml-cpp's parser.
-std::string find_duplicate(const YAML::Node& node, const std::string& file, const std::string& path,
-                           long* visited) {
-  if (++*visited > kMaxYamlNodes) {
-    return file + ":" + std::to_string(node.Mark().line + 1) + ": " +
-           io::excerpt(path.empty() ? std::string("(top)") : path) + ": the YAML holds more than " +
-           std::to_string(kMaxYamlNodes) +
-           " nodes once its aliases (*name) are expanded; a config has a few hundred";
+struct Walk {
+  const std::string& file;
+  long visited = 0;
+};
+
+std::string too_large(const YAML::Node& node, const Walk& w, const std::string& path,
+                      const std::string& what) {
+  return w.file + ":" + std::to_string(node.Mark().line + 1) + ": " +
+         io::excerpt(path.empty() ? std::string("(top)") : path) + ": " + what;
+}
+
+/// Depth-first; "" or the first duplicate's error, or the error of a tree too large or too deep
+/// to walk.
+std::string find_duplicate(const YAML::Node& node, Walk& w, const std::string& path, int depth) {
+  if (++w.visited > kMaxYamlNodes) {
+    return too_large(
+        node, w, path,
+        "the YAML holds more than " + std::to_string(kMaxYamlNodes) +
+            " nodes once its aliases (*name) are expanded; a config has a few hundred");
+  }
+  if (depth > kMaxYamlDepth) {
+    return too_large(node, w, path,
+                     "nested more than " + std::to_string(kMaxYamlDepth) +
+                         " levels (an alias inside the node it names?)");
   }
   if (node.IsSequence()) {
     for (std::size_t i = 0; i < node.size(); ++i) {
       const std::string e =
-          find_duplicate(node[i], file, path + "[" + std::to_string(i) + "]", visited);
+          find_duplicate(node[i], w, path + "[" + std::to_string(i) + "]", depth + 1);
       if (!e.empty()) return e;
     }
     return "";
@@ -42,10 +61,10 @@ std::string find_duplicate(const YAML::Node& node, const std::string& file, cons
     const int line = kv.first.Mark().line + 1;
     const auto [it, inserted] = first_line.emplace(key, line);
     if (!inserted) {
-      return file + ":" + std::to_string(line) + ": " + io::excerpt(join(path, key)) +
+      return w.file + ":" + std::to_string(line) + ": " + io::excerpt(join(path, key)) +
              ": duplicate key (first at line " + std::to_string(it->second) + ")";
     }
-    const std::string e = find_duplicate(kv.second, file, join(path, key), visited);
+    const std::string e = find_duplicate(kv.second, w, join(path, key), depth + 1);
     if (!e.empty()) return e;
   }
   return "";
@@ -54,8 +73,8 @@ std::string find_duplicate(const YAML::Node& node, const std::string& file, cons
 }  // namespace
 
 std::string duplicate_key_error(const YAML::Node& root, const std::string& file) {
-  long visited = 0;
-  return find_duplicate(root, file, "", &visited);
+  Walk w{file};
+  return find_duplicate(root, w, "", 0);
 }
 
 int line_of_key(const YAML::Node& root, std::string_view dotted_key) {

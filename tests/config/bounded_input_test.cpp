@@ -42,6 +42,17 @@ TEST(BoundedConfig, NestedAliasesAreRefusedWithTheFileAndLine) {
   EXPECT_NE(c.error.find("more than 100000 nodes"), std::string::npos) << c.error;
 }
 
+// An alias inside the node it names is a cycle (the fuzzer found it: a stack overflow in the
+// walk). Refused at its line, whatever the depth of the text.
+TEST(BoundedConfig, AnAliasInsideItsOwnNodeIsRefused) {
+  for (const char* cycle : {"x: &a [1, *a]\n", "x: &m {k: *m}\n"}) {
+    const ConfigLoad c = load_config_text(std::string(kVehicle) + cycle, "cycle.yaml");
+    ASSERT_FALSE(c.ok()) << cycle;
+    EXPECT_NE(c.error.find("cycle.yaml:"), std::string::npos) << c.error;
+    EXPECT_NE(c.error.find("nested more than 64 levels"), std::string::npos) << c.error;
+  }
+}
+
 TEST(BoundedConfig, AnAnchorUsedAFewTimesStillLoads) {
   // Aliases as YAML means them: one shared value; the unknown key under it is still reported.
   const std::string ok = std::string(kVehicle) + "suspension: &s\n  stiffness_n_per_m: 30000\n";

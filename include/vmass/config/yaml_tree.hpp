@@ -5,7 +5,8 @@
 //                                     when none is (yaml-cpp keeps both and looks up the first:
 //                                     a silent "first wins" that the config must refuse); also
 //                                     the error of a tree of more than 100,000 nodes once its
-//                                     aliases are expanded (nested anchors: "billion laughs")
+//                                     aliases are expanded (nested anchors: "billion laughs"),
+//                                     or of more than 64 levels (an alias inside its own node)
 //   line_of_key(root, "a.b[2]")       the line (1-based) of a dotted key, or of its deepest
 //                                     existing parent; 0 when not even the first part exists;
 //                                     for validation errors raised after parsing
