@@ -1,5 +1,11 @@
 #include "vmass/config/config.hpp"
 
+#include <algorithm>
+#include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
+
 #include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
 #include "vmass/config/yaml_tree.hpp"
@@ -255,23 +261,58 @@ ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::str
   return out;
 }
 
+/// Counts where documents start, and nothing else.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  int line = 0;  ///< 1-based
+  void OnDocumentStart(const YAML::Mark& mark) override { line = mark.line + 1; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+/// The line of the text's second YAML document, 0 when it holds at most one. Parses at most two
+/// documents: yaml-cpp's LoadAll, asked for all of them, never ends on some texts (the fuzzer
+/// found one that filled 2 GB with empty documents).
+int second_document_line(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentStarts first;
+  if (!parser.HandleNextDocument(first)) return 0;
+  DocumentStarts second;
+  return parser.HandleNextDocument(second) ? std::max(second.line, 1) : 0;
+}
+
+ConfigLoad failed(const std::string& error) {
+  ConfigLoad out;
+  out.error = error;
+  return out;
+}
+
 /// The one YAML document of a config: a second one (after `---`, or anything after `...`) would
-/// be read by nobody, so it is an error, as is a text that holds none.
+/// be read by nobody, so it is an error; so is a NUL byte, which is no YAML text.
 ConfigLoad parse_text(const std::string& text, const std::string& file,
                       const std::string& directory) {
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    const auto line = std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n') + 1;
+    return failed(file + ":" + std::to_string(line) + ": a NUL byte: not a YAML config");
+  }
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
-    if (documents.size() > 1) {
-      ConfigLoad out;
-      out.error = file + ":" + std::to_string(documents[1].Mark().line + 1) +
-                  ": a second YAML document: a config is one (nothing after '---' or '...')";
-      return out;
+    if (const int line = second_document_line(text); line > 0) {
+      return failed(file + ":" + std::to_string(line) +
+                    ": a second YAML document: a config is one (nothing after '---' or '...')");
     }
-    return parse(documents.empty() ? YAML::Node() : documents.front(), file, directory);
+    return parse(YAML::Load(text), file, directory);
   } catch (const YAML::Exception& e) {
-    ConfigLoad out;
-    out.error = file + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;
-    return out;
+    return failed(file + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
 }
 

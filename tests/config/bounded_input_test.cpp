@@ -83,5 +83,15 @@ TEST(StrictConfig, ASecondYamlDocumentIsRefused) {
   }
 }
 
+// A NUL byte is no YAML text: refused at its line. yaml-cpp's LoadAll, which the loader once
+// used to find a second document, never ended on such a text (the fuzzer's 2 GB of empty
+// documents, fuzz/corpus/fuzz_config/regression_loadall_nul.yaml); it reads two at most now.
+TEST(StrictConfig, ANulByteIsRefusedAtItsLine) {
+  const std::string text = std::string(kVehicle) + "x: a" + std::string(1, '\0') + "b\n";
+  const ConfigLoad c = load_config_text(text, "nul.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error.find("nul.yaml:10: a NUL byte"), std::string::npos) << c.error;
+}
+
 }  // namespace
 }  // namespace vmass
