@@ -70,7 +70,9 @@ cmp -s "$out/d2024.cut" "$out/d1969.cut" || fail "1969 differs from 2024: $(diff
 [ "$(grep -c inputs_invalid "$out/d1969.csv")" -le 1 ] || fail "1969: ticks with inputs_invalid"
 
 # 5. Bounded list, FIFOs.
-( ulimit -v 1000000; timeout 20 "$replay" --config "$config" --log-list /dev/zero ) >/dev/null 2>"$out/zero.err"
+# Refused before a byte is read; the timeout bounds a regression that would read on (no
+# `ulimit -v`: AddressSanitizer's shadow memory needs terabytes of address space).
+timeout 5 "$replay" --config "$config" --log-list /dev/zero >/dev/null 2>"$out/zero.err"
 [ $? -eq 2 ] || fail "--log-list /dev/zero: expected exit 2: $(cat "$out/zero.err")"
 grep -q "/dev/zero: cannot read the list of logs: is a character device" "$out/zero.err" ||
   fail "--log-list /dev/zero: $(cat "$out/zero.err")"
