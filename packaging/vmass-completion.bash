@@ -23,6 +23,9 @@ _vmass_complete() {
     --can)
       mapfile -t COMPREPLY < <(compgen -W "$(ls /sys/class/net 2>/dev/null)" -- "$cur")
       return ;;
+    --interface)  # of a log: ASC, TRC, BLF channel and MDF4 bus N are can<N-1>
+      mapfile -t COMPREPLY < <(compgen -W "can0 can1 can2 can3" -- "$cur")
+      return ;;
   esac
   if [[ $cur == -* ]]; then
     mapfile -t COMPREPLY < <(compgen -W "$(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$help" | sort -u)" \

@@ -7,6 +7,7 @@
 #include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
 #include "vmass/core/static_initializer.hpp"
+#include "vmass/json/json.hpp"
 
 namespace vmass::calibrate {
 namespace {
@@ -18,36 +19,8 @@ std::string num(double v, const char* format = "%.10g") {
   return buf;
 }
 
-std::string json_num(double v) { return std::isfinite(v) ? num(v) : std::string("null"); }
-
-std::string json_str(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    switch (ch) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(ch) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", ch);
-          out += buf;
-        } else {
-          out += ch;
-        }
-    }
-  }
-  return out + "\"";
-}
+// 10 significant digits, as the text report's numbers were.
+json::Json json_num(double v) { return json::significant(v, 10); }
 
 std::string fixed(double v, int decimals, int width = 0) {
   if (!std::isfinite(v)) {
@@ -74,22 +47,78 @@ std::string estimate_text(const Estimate& e, double scale, int decimals, const s
   return s;
 }
 
-void json_estimate(std::string* out, const std::string& key, const Estimate& e, double scale,
+void json_estimate(json::Json* out, const std::string& key, const Estimate& e, double scale,
                    const std::string& unit_suffix) {
-  *out += json_str(key + unit_suffix) + ": " + json_num(e.value * scale) + ", ";
-  *out += json_str(key + "_std" + unit_suffix) + ": " + json_num(e.std * scale) + ", ";
-  *out += json_str(key + "_ci_low" + unit_suffix) + ": " + json_num(e.low * scale) + ", ";
-  *out += json_str(key + "_ci_high" + unit_suffix) + ": " + json_num(e.high * scale);
+  (*out)[key + unit_suffix] = json_num(e.value * scale);
+  (*out)[key + "_std" + unit_suffix] = json_num(e.std * scale);
+  (*out)[key + "_ci_low" + unit_suffix] = json_num(e.low * scale);
+  (*out)[key + "_ci_high" + unit_suffix] = json_num(e.high * scale);
 }
 
-void json_stats(std::string* out, const FitStats& s) {
-  *out += "\"steps_used\": " + std::to_string(s.steps_used) +
-          ", \"robust_scale_mm\": " + json_num(s.robust_scale_mm) +
-          ", \"residual_std_mm\": " + json_num(s.residual_std_mm) +
-          ", \"step_se_mm\": " + json_num(s.step_se_mm) +
-          ", \"effective_dof\": " + json_num(s.effective_dof) + ", \"cost\": " + json_num(s.cost) +
-          ", \"iterations\": " + std::to_string(s.iterations) +
-          ", \"termination\": " + json_str(s.termination);
+void json_stats(json::Json* out, const FitStats& s) {
+  (*out)["steps_used"] = s.steps_used;
+  (*out)["robust_scale_mm"] = json_num(s.robust_scale_mm);
+  (*out)["residual_std_mm"] = json_num(s.residual_std_mm);
+  (*out)["step_se_mm"] = json_num(s.step_se_mm);
+  (*out)["effective_dof"] = json_num(s.effective_dof);
+  (*out)["cost"] = json_num(s.cost);
+  (*out)["iterations"] = s.iterations;
+  (*out)["termination"] = s.termination;
+}
+
+json::Json progressive_json(const ProgressiveFit& pr) {
+  json::Json j;
+  j["detected"] = pr.detected;
+  j["reason"] = pr.reason;
+  json_estimate(&j, "stiffness", pr.stiffness_n_per_m, 1.0, "_n_per_m");
+  json_estimate(&j, "zero_offset", pr.zero_offset_m, 1e3, "_mm");
+  json_estimate(&j, "knee", pr.knee_m, 1e3, "_mm");
+  json_estimate(&j, "rate", pr.rate_n_per_m2, 1.0, "_n_per_m2");
+  j["f_statistic"] = json_num(pr.f_statistic);
+  j["f_critical"] = json_num(pr.f_critical);
+  json_stats(&j, pr.stats);
+  return j;
+}
+
+json::Json geometry_json(const LoadGeometry& g) {
+  return {{"wheelbase_m", json_num(g.wheelbase_m)},
+          {"cg_to_front_axle_m", json_num(g.cg_to_front_axle_m)},
+          {"gravity_mps2", json_num(g.gravity_mps2)},
+          {"wheel_force_per_kg_n", json_num(g.wheel_force_per_kg())}};
+}
+
+json::Json suspension_json(const SuspensionParams& p) {
+  return {{"stiffness_n_per_m", json_num(p.stiffness_n_per_m)},
+          {"empty_deflection_m", json_num(p.empty_deflection_m)},
+          {"progressive_knee_m", json_num(p.progressive_knee_m)},
+          {"progressive_rate_n_per_m2", json_num(p.progressive_rate_n_per_m2)},
+          {"linear_range_kg", json_num(p.linear_range_kg)},
+          {"calibrated_range_kg", json_num(p.calibrated_range_kg)}};
+}
+
+json::Json step_json(const BallastStepFit& s) {
+  return {{"added_mass_kg", json_num(s.step.added_mass_kg)},
+          {"force_n", json_num(s.force_n)},
+          {"deflection_mm", json_num(s.step.deflection_m * 1e3)},
+          {"deflection_std_mm", json_num(s.step.deflection_std_m * 1e3)},
+          {"samples", s.step.sample_count},
+          {"start_s", json_num(s.step.start_s)},
+          {"end_s", json_num(s.step.end_s)},
+          {"linear_residual_mm", json_num(s.linear_residual_m * 1e3)},
+          {"progressive_residual_mm", json_num(s.progressive_residual_m * 1e3)},
+          {"in_linear_fit", s.in_linear_fit},
+          {"outlier", s.outlier},
+          {"linear_mass_error", json_num(s.linear_mass_error)}};
+}
+
+json::Json mass_check_json(const MassCheckRow& r) {
+  return {{"added_mass_kg", json_num(r.added_mass_kg)},
+          {"true_mass_kg", json_num(r.true_mass_kg)},
+          {"linear_mass_kg", json_num(r.linear_mass_kg)},
+          {"linear_error", json_num(r.linear_error)},
+          {"progressive_mass_kg", json_num(r.progressive_mass_kg)},
+          {"progressive_error", json_num(r.progressive_error)},
+          {"beyond_linear_range", r.beyond_linear_range}};
 }
 
 }  // namespace
@@ -128,13 +157,14 @@ std::string suspension_yaml(const SuspensionCalibration& calibration,
   };
   const bool linear_range = p.linear_range_kg > 0.0;
   if (!linear_range) p.linear_range_kg = 1e-3;  // the loader wants > 0
-  const SuspensionComments comments{
-      std_comment(c, 1.0, "N/m"),
-      std_comment(z0, 1.0, "m"),
-      prog ? std_comment(calibration.progressive.knee_m, 1.0, "m") : "no bump stop",
-      prog ? std_comment(calibration.progressive.rate_n_per_m2, 1.0, "N/m^2") : "",
-      linear_range ? "" : "no step within tolerance",
-      ""};
+  const FieldComments comments{
+      {"stiffness_n_per_m", std_comment(c, 1.0, "N/m")},
+      {"empty_deflection_m", std_comment(z0, 1.0, "m")},
+      {"progressive_knee_m",
+       prog ? std_comment(calibration.progressive.knee_m, 1.0, "m") : "no bump stop"},
+      {"progressive_rate_n_per_m2",
+       prog ? std_comment(calibration.progressive.rate_n_per_m2, 1.0, "N/m^2") : ""},
+      {"linear_range_kg", linear_range ? "" : "no step within tolerance"}};
   std::string out;
   for (const std::string& line : header_comment) out += "# " + line + "\n";
   return out + suspension_section_yaml(p, comments);
@@ -148,13 +178,7 @@ std::string check_suspension_yaml(const std::string& yaml) {
     const YAML::Node root = YAML::Load(yaml);
     YamlReader r(root["suspension"], name, "suspension");
     SuspensionParams p;
-    for (const SuspensionField& field : kSuspensionFields) {
-      if (field.required) {
-        r.require(field.key, &(p.*field.member));
-      } else {
-        r.read(field.key, &(p.*field.member));
-      }
-    }
+    read_suspension_section(r, /*present=*/true, &p);
     return p.validate();
   } catch (const ConfigError& e) {
     // "snippet:LINE: suspension.KEY: ...": the line of a text nobody sees says nothing.
@@ -169,71 +193,22 @@ std::string check_suspension_yaml(const std::string& yaml) {
 std::string calibration_json(const SuspensionCalibration& cal,
                              const std::vector<MassCheckRow>& mass_rows) {
   const LinearFit& lin = cal.linear;
-  const ProgressiveFit& pr = cal.progressive;
-  std::string o = "{";
-  json_estimate(&o, "stiffness", lin.stiffness_n_per_m, 1.0, "_n_per_m");
-  o += ", ";
-  json_estimate(&o, "zero_offset", lin.zero_offset_m, 1e3, "_mm");
-  o += ", \"linear_range_kg\": " + json_num(cal.linear_range_kg);
-  o += ", \"calibrated_range_kg\": " + json_num(cal.calibrated_range_kg);
-  o += ", \"linear_tolerance\": " + json_num(cal.linear_tolerance);
-  o += ", \"linear\": {";
-  json_stats(&o, lin.stats);
-  o += "}, \"progressive\": {\"detected\": " + std::string(pr.detected ? "true" : "false") +
-       ", \"reason\": " + json_str(pr.reason) + ", ";
-  json_estimate(&o, "stiffness", pr.stiffness_n_per_m, 1.0, "_n_per_m");
-  o += ", ";
-  json_estimate(&o, "zero_offset", pr.zero_offset_m, 1e3, "_mm");
-  o += ", ";
-  json_estimate(&o, "knee", pr.knee_m, 1e3, "_mm");
-  o += ", ";
-  json_estimate(&o, "rate", pr.rate_n_per_m2, 1.0, "_n_per_m2");
-  o += ", \"f_statistic\": " + json_num(pr.f_statistic) +
-       ", \"f_critical\": " + json_num(pr.f_critical) + ", ";
-  json_stats(&o, pr.stats);
-  o += "}, \"geometry\": {\"wheelbase_m\": " + json_num(cal.geometry.wheelbase_m) +
-       ", \"cg_to_front_axle_m\": " + json_num(cal.geometry.cg_to_front_axle_m) +
-       ", \"gravity_mps2\": " + json_num(cal.geometry.gravity_mps2) +
-       ", \"wheel_force_per_kg_n\": " + json_num(cal.geometry.wheel_force_per_kg()) + "}";
-  const SuspensionParams p = cal.suspension_params();
-  o += ", \"suspension\": {\"stiffness_n_per_m\": " + json_num(p.stiffness_n_per_m) +
-       ", \"empty_deflection_m\": " + json_num(p.empty_deflection_m) +
-       ", \"progressive_knee_m\": " + json_num(p.progressive_knee_m) +
-       ", \"progressive_rate_n_per_m2\": " + json_num(p.progressive_rate_n_per_m2) +
-       ", \"linear_range_kg\": " + json_num(p.linear_range_kg) +
-       ", \"calibrated_range_kg\": " + json_num(p.calibrated_range_kg) + "}";
-  o += ", \"steps\": [";
-  for (std::size_t i = 0; i < cal.steps.size(); ++i) {
-    const BallastStepFit& s = cal.steps[i];
-    o += std::string(i ? ", " : "") + "{\"added_mass_kg\": " + json_num(s.step.added_mass_kg) +
-         ", \"force_n\": " + json_num(s.force_n) +
-         ", \"deflection_mm\": " + json_num(s.step.deflection_m * 1e3) +
-         ", \"deflection_std_mm\": " + json_num(s.step.deflection_std_m * 1e3) +
-         ", \"samples\": " + std::to_string(s.step.sample_count) +
-         ", \"start_s\": " + json_num(s.step.start_s) + ", \"end_s\": " + json_num(s.step.end_s) +
-         ", \"linear_residual_mm\": " + json_num(s.linear_residual_m * 1e3) +
-         ", \"progressive_residual_mm\": " + json_num(s.progressive_residual_m * 1e3) +
-         ", \"in_linear_fit\": " + (s.in_linear_fit ? "true" : "false") +
-         ", \"outlier\": " + (s.outlier ? "true" : "false") +
-         ", \"linear_mass_error\": " + json_num(s.linear_mass_error) + "}";
-  }
-  o += "], \"mass_check\": [";
-  for (std::size_t i = 0; i < mass_rows.size(); ++i) {
-    const MassCheckRow& r = mass_rows[i];
-    o += std::string(i ? ", " : "") + "{\"added_mass_kg\": " + json_num(r.added_mass_kg) +
-         ", \"true_mass_kg\": " + json_num(r.true_mass_kg) +
-         ", \"linear_mass_kg\": " + json_num(r.linear_mass_kg) +
-         ", \"linear_error\": " + json_num(r.linear_error) +
-         ", \"progressive_mass_kg\": " + json_num(r.progressive_mass_kg) +
-         ", \"progressive_error\": " + json_num(r.progressive_error) +
-         ", \"beyond_linear_range\": " + (r.beyond_linear_range ? "true" : "false") + "}";
-  }
-  o += "], \"warnings\": [";
-  for (std::size_t i = 0; i < cal.warnings.size(); ++i) {
-    o += std::string(i ? ", " : "") + json_str(cal.warnings[i]);
-  }
-  o += "]}";
-  return o;
+  json::Json j;
+  json_estimate(&j, "stiffness", lin.stiffness_n_per_m, 1.0, "_n_per_m");
+  json_estimate(&j, "zero_offset", lin.zero_offset_m, 1e3, "_mm");
+  j["linear_range_kg"] = json_num(cal.linear_range_kg);
+  j["calibrated_range_kg"] = json_num(cal.calibrated_range_kg);
+  j["linear_tolerance"] = json_num(cal.linear_tolerance);
+  json_stats(&j["linear"], lin.stats);
+  j["progressive"] = progressive_json(cal.progressive);
+  j["geometry"] = geometry_json(cal.geometry);
+  j["suspension"] = suspension_json(cal.suspension_params());
+  j["steps"] = json::Json::array();
+  for (const BallastStepFit& s : cal.steps) j["steps"].push_back(step_json(s));
+  j["mass_check"] = json::Json::array();
+  for (const MassCheckRow& r : mass_rows) j["mass_check"].push_back(mass_check_json(r));
+  j["warnings"] = cal.warnings;
+  return json::dump(j);
 }
 
 std::string calibration_text(const SuspensionCalibration& cal,

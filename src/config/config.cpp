@@ -6,201 +6,15 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/parser.h>
 
+#include "vmass/config/estimator_section.hpp"
 #include "vmass/config/suspension_section.hpp"
+#include "vmass/config/vehicle_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
 #include "vmass/config/yaml_tree.hpp"
 #include "vmass/io/regular_file.hpp"
 
 namespace vmass {
 namespace {
-
-void read_vehicle(YamlReader r, VehicleParams* v) {
-  r.require("empty_mass_kg", &v->empty_mass_kg);
-  r.require("wheelbase_m", &v->wheelbase_m);
-  r.require("cg_to_front_axle_m", &v->cg_to_front_axle_m);
-  r.require("wheel_radius_m", &v->wheel_radius_m);
-  r.require("brake_gain_n_per_pa", &v->brake_gain_n_per_pa);
-  r.require("steering_ratio", &v->steering_ratio);
-  r.require("cornering_stiffness_front_n_per_rad", &v->cornering_stiffness_front_n_per_rad);
-  r.require("cornering_stiffness_rear_n_per_rad", &v->cornering_stiffness_rear_n_per_rad);
-  r.read("rotating_mass_kg", &v->rotating_mass_kg);
-  r.read("rotating_mass_by_gear_kg", &v->rotating_mass_by_gear_kg);
-  r.read("gravity_mps2", &v->gravity_mps2);
-  r.read("max_mass_kg", &v->max_mass_kg);
-  r.read("drag_area_m2", &v->drag_area_m2);
-  r.read("air_density_kg_per_m3", &v->air_density_kg_per_m3);
-  r.read("rolling_resistance_coeff", &v->rolling_resistance_coeff);
-  r.read("wheel_torque_accuracy_fraction", &v->wheel_torque_accuracy_fraction);
-  r.read("wheel_radius_accuracy_fraction", &v->wheel_radius_accuracy_fraction);
-  r.read("pitch_gradient_deg_per_g", &v->pitch_gradient_deg_per_g);
-  r.read("pitch_gradient_std_deg_per_g", &v->pitch_gradient_std_deg_per_g);
-  r.read("rotating_mass_accuracy_fraction", &v->rotating_mass_accuracy_fraction);
-  r.read("electric_drive", &v->electric_drive);
-  r.read("gear_ratios", &v->gear_ratios);
-  r.read("final_drive_ratio", &v->final_drive_ratio);
-  r.read("driveline_efficiency", &v->driveline_efficiency);
-  r.read("max_driveline_slip_fraction", &v->max_driveline_slip_fraction);
-  r.reject_unknown_keys();
-}
-
-// No section: the car has no rear deflection sensor (the estimator starts from the no-static
-// prior). `levelled: true`: it has one on a self-levelling axle, which reads no load.
-void read_suspension(YamlReader r, bool present, SuspensionParams* s) {
-  s->has_sensor = present;
-  if (!present) return;
-  r.read("levelled", &s->levelled);
-  for (const SuspensionField& field : kSuspensionFields) {
-    if (field.required && !s->levelled) {
-      r.require(field.key, &(s->*field.member));
-    } else {
-      r.read(field.key, &(s->*field.member));
-    }
-  }
-  r.reject_unknown_keys();
-}
-
-// Over 80 lines: one read per key of the estimator section. Main adds keys here (issue 8);
-// then a field table, as vmass/config/suspension_section.hpp, shortens it.
-// NOLINTNEXTLINE(readability-function-size)
-void read_estimator(YamlReader r, EstimatorParams* e) {
-  std::string type = std::string(regressor_type_name(e->type));
-  r.read("type", &type);
-  if (type == "rls") {
-    e->type = RegressorType::kRls;
-  } else if (type == "bayes") {
-    e->type = RegressorType::kBayes;
-  } else {
-    r.fail("type", "expected 'rls' or 'bayes', got '" + type + "'");
-  }
-  r.read("tick_rate_hz", &e->differencing.tick_rate_hz);
-  r.read("differencing_dt_s", &e->differencing.differencing_dt_s);
-  r.read("filter_cutoff_hz", &e->differencing.filter_cutoff_hz);
-  r.read("converged_ci_halfwidth_fraction", &e->converged_ci_halfwidth_fraction);
-  r.read("pair_correlation_ticks", &e->pair_correlation_ticks);
-  r.read("model_error_std_fraction", &e->model_error_std_fraction);
-  r.read("power_cycle_min_off_s", &e->power_cycle_min_off_s);
-  {
-    YamlReader s = r.child("static_init");
-    StaticInitParams& p = e->static_init;
-    s.read("standstill_speed_mps", &p.standstill_speed_mps);
-    s.read("settle_s", &p.settle_s);
-    s.read("standstill_window_s", &p.standstill_window_s);
-    s.read("max_deflection_std_m", &p.max_deflection_std_m);
-    s.read("prior_std_kg", &p.prior_std_kg);
-    s.read("prior_std_fraction_of_empty", &p.prior_std_fraction_of_empty);
-    s.read("payload_x_min_fraction", &p.payload_x_min_fraction);
-    s.read("payload_x_max_fraction", &p.payload_x_max_fraction);
-    s.read("payload_y_max_fraction", &p.payload_y_max_fraction);
-    s.read("out_of_range_prior_std_kg", &p.out_of_range_prior_std_kg);
-    s.read("no_static_prior_std_kg", &p.no_static_prior_std_kg);
-    s.read("mu_prior_std_n", &p.mu_prior_std_n);
-    s.read("load_change_sigma", &p.load_change_sigma);
-    s.read("min_load_change_kg", &p.min_load_change_kg);
-    s.read("min_load_change_fraction", &p.min_load_change_fraction);
-    s.read("max_grade_change_mps2", &p.max_grade_change_mps2);
-    s.reject_unknown_keys();
-  }
-  {
-    YamlReader s = r.child("longitudinal");
-    LongitudinalParams& p = e->longitudinal;
-    s.read("enabled", &p.enabled);
-    s.read("max_abs_accel_y_mps2", &p.max_abs_accel_y_mps2);
-    s.read("min_abs_delta_accel_x_mps2", &p.min_abs_delta_accel_x_mps2);
-    s.read("min_abs_delta_force_n", &p.min_abs_delta_force_n);
-    s.read("min_speed_mps", &p.min_speed_mps);
-    s.read("weight", &p.weight);
-    s.read("min_excitation_sigma", &p.min_excitation_sigma);
-    s.read("settle_s", &p.settle_s);
-    s.read("use_braking", &p.use_braking);
-    s.read("use_overrun", &p.use_overrun);
-    s.read("brake_applied_weight_fraction", &p.brake_applied_weight_fraction);
-    s.read("noise_memory_s", &p.noise_memory_s);
-    s.read("subtract_aero", &p.subtract_aero);
-    std::string source(accel_source_name(p.accel_source));
-    s.read("accel_source", &source);
-    if (source == "accelerometer") {
-      p.accel_source = AccelSource::kAccelerometer;
-    } else if (source == "wheel_speed") {
-      p.accel_source = AccelSource::kWheelSpeed;
-    } else if (source == "calibrated") {
-      p.accel_source = AccelSource::kCalibrated;
-    } else {
-      s.fail("accel_source",
-             "expected accelerometer, wheel_speed or calibrated, got '" + source + "'");
-    }
-    s.read("scale_memory_s", &p.scale_memory_s);
-    YamlReader lag = s.child("lag");
-    lag.read("enabled", &p.lag.enabled);
-    lag.read("max_lag_s", &p.lag.max_lag_s);
-    lag.read("memory_s", &p.lag.memory_s);
-    lag.read("min_correlation", &p.lag.min_correlation);
-    lag.read("min_evidence_s", &p.lag.min_evidence_s);
-    lag.read("fixed_lag_s", &p.lag.fixed_lag_s);
-    lag.read("provisional_std_s", &p.lag.provisional_std_s);
-    lag.reject_unknown_keys();
-    s.reject_unknown_keys();
-  }
-  {
-    YamlReader s = r.child("lateral");
-    LateralParams& p = e->lateral;
-    s.read("enabled", &p.enabled);
-    s.read("max_abs_accel_y_mps2", &p.max_abs_accel_y_mps2);
-    s.read("min_abs_delta_accel_y_mps2", &p.min_abs_delta_accel_y_mps2);
-    s.read("max_abs_accel_x_mps2", &p.max_abs_accel_x_mps2);
-    s.read("min_abs_steering_wheel_angle_deg", &p.min_abs_steering_wheel_angle_deg);
-    s.read("min_speed_mps", &p.min_speed_mps);
-    s.read("weight", &p.weight);
-    YamlReader f = s.child("velocity_filter");
-    f.read("accel_noise_std_mps2", &p.velocity_filter.accel_noise_std_mps2);
-    f.read("speed_noise_std_mps", &p.velocity_filter.speed_noise_std_mps);
-    f.read("pseudo_lateral_velocity_std_mps", &p.velocity_filter.pseudo_lateral_velocity_std_mps);
-    f.read("initial_lateral_velocity_std_mps", &p.velocity_filter.initial_lateral_velocity_std_mps);
-    f.read("accel_x_offset_walk_mps2_per_sqrt_s",
-           &p.velocity_filter.accel_x_offset_walk_mps2_per_sqrt_s);
-    f.read("initial_accel_x_offset_std_mps2", &p.velocity_filter.initial_accel_x_offset_std_mps2);
-    f.reject_unknown_keys();
-    s.reject_unknown_keys();
-  }
-  {
-    YamlReader s = r.child("load_change");
-    LoadChangeParams& p = e->load_change;
-    s.read("detect_in_motion", &p.detect_in_motion);
-    s.read("min_stop_s", &p.min_stop_s);
-    s.read("decide_sigma", &p.decide_sigma);
-    s.read("min_change_fraction", &p.min_change_fraction);
-    int min_pairs = static_cast<int>(p.min_pairs);
-    s.read("min_pairs", &min_pairs);
-    p.min_pairs = min_pairs;
-    s.read("batch_size", &p.batch_size);
-    s.read("differencing_dt_s", &p.differencing_dt_s);
-    s.read("filter_cutoff_hz", &p.filter_cutoff_hz);
-    s.reject_unknown_keys();
-  }
-  {
-    YamlReader s = r.child("supervisor");
-    s.read("innovation_gate_sigma", &e->supervisor.innovation_gate_sigma);
-    s.read("huber_k", &e->supervisor.huber_k);
-    s.read("min_pairs_before_gating", &e->supervisor.min_pairs_before_gating);
-    s.read("max_consecutive_rejections", &e->supervisor.max_consecutive_rejections);
-    s.reject_unknown_keys();
-  }
-  {
-    YamlReader s = r.child("rls");
-    s.read("noise_std_n", &e->rls.noise_std_n);
-    s.read("forgetting_factor", &e->rls.forgetting_factor);
-    s.read("min_variance_fraction", &e->rls.min_variance_fraction);
-    s.reject_unknown_keys();
-  }
-  {
-    YamlReader s = r.child("bayes");
-    s.read("batch_size", &e->bayes.batch_size);
-    s.read("noise_std_guess_n", &e->bayes.noise_std_guess_n);
-    s.read("prior_noise_dof", &e->bayes.prior_noise_dof);
-    s.read("credible_level", &e->bayes.credible_level);
-    s.reject_unknown_keys();
-  }
-  r.reject_unknown_keys();
-}
 
 /// PipelineParams::validate()'s "key what; key what" as "file:line: key: what" lines, the line
 /// being where the key is written (or its section, for a key left at its default).
@@ -239,10 +53,10 @@ ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::str
     c.directory = directory;
     YamlReader top(root, file, "");
     if (!top.has("vehicle")) top.fail("vehicle", "required section is missing");
-    read_vehicle(top.child("vehicle"), &c.pipeline.vehicle);
+    read_vehicle_section(top.child("vehicle"), &c.pipeline.vehicle);
     const bool has_suspension = top.has("suspension");
-    read_suspension(top.child("suspension"), has_suspension, &c.pipeline.suspension);
-    read_estimator(top.child("estimator"), &c.pipeline.estimator);
+    read_suspension_section(top.child("suspension"), has_suspension, &c.pipeline.suspension);
+    read_estimator_section(top.child("estimator"), &c.pipeline.estimator);
     c.can = top.raw("can");
     c.lcm = top.raw("lcm");
     c.daemon = top.raw("daemon");

@@ -2,19 +2,26 @@
 
 namespace vmass {
 
-void emit_suspension_section(YAML::Emitter& out, const SuspensionParams& params,
-                             const SuspensionComments& comments) {
-  out << YAML::Key << "suspension" << YAML::Value << YAML::BeginMap;
-  for (std::size_t i = 0; i < kSuspensionFields.size(); ++i) {
-    const SuspensionField& field = kSuspensionFields[i];
-    out << YAML::Key << field.key << YAML::Value << params.*field.member;
-    if (!comments[i].empty()) out << YAML::Comment(comments[i]);
+void read_suspension_section(YamlReader r, bool present, SuspensionParams* params) {
+  params->has_sensor = present;
+  if (!present) return;
+  r.read("levelled", &params->levelled);
+  for (Field<SuspensionParams> field : kSuspensionFields) {
+    field.required = field.required && !params->levelled;
+    read_field(r, field, params);
   }
+  r.reject_unknown_keys();
+}
+
+void emit_suspension_section(YAML::Emitter& out, const SuspensionParams& params,
+                             const FieldComments& comments, FieldSelection which) {
+  out << YAML::Key << "suspension" << YAML::Value << YAML::BeginMap;
+  emit_fields(out, kSuspensionFields, params, comments, which);
   out << YAML::EndMap;
 }
 
-std::string suspension_section_yaml(const SuspensionParams& params,
-                                    const SuspensionComments& comments, int precision) {
+std::string suspension_section_yaml(const SuspensionParams& params, const FieldComments& comments,
+                                    int precision) {
   YAML::Emitter out;
   out.SetDoublePrecision(precision);
   out << YAML::BeginMap;

@@ -158,6 +158,15 @@ void YamlReader::read(const std::string& key, int* out) {
   *out = static_cast<int>(v);
 }
 
+void YamlReader::read(const std::string& key, long* out) {
+  double v = 0.0;
+  const bool present = has(key);
+  read(key, &v);
+  if (!present) return;
+  if (!(std::abs(v) < 9e15) || v != std::floor(v)) fail(key, "expected an integer");
+  *out = static_cast<long>(v);
+}
+
 void YamlReader::read(const std::string& key, bool* out) {
   used_.push_back(key);
   refuse_null(key);
@@ -201,6 +210,20 @@ void YamlReader::read(const std::string& key, std::vector<double>* out) {
                     bound->unit + ")");
     }
     out->push_back(v);
+  }
+}
+
+void YamlReader::read(const std::string& key, std::vector<int>* out) {
+  std::vector<double> values;
+  const bool present = has(key);
+  read(key, &values);
+  if (!present) return;
+  out->clear();
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!(std::abs(values[i]) < 2e9) || values[i] != std::floor(values[i])) {
+      fail(key, "element " + std::to_string(i) + " is not an integer");
+    }
+    out->push_back(static_cast<int>(values[i]));
   }
 }
 

@@ -9,8 +9,9 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <vector>
+
+#include "vmass/io/sibling_program.hpp"
 
 extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX, for posix_spawn
 
@@ -57,13 +58,7 @@ FILE* spawn_reading(const std::vector<std::string>& args, pid_t* child, std::str
 
 std::string ConvertedLogFrameSource::converter_path() {
   if (std::string named = env_or_empty("VMASS_LOG_CONVERT"); !named.empty()) return named;
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const std::filesystem::path beside = self.parent_path() / "vmass-log-convert";
-    if (std::filesystem::exists(beside, ec)) return beside.string();
-  }
-  return "vmass-log-convert";  // on PATH
+  return io::sibling_program("vmass-log-convert");
 }
 
 ConvertedLogFrameSource::ConvertedLogFrameSource(const std::string& path, can::LogFormat format,
@@ -122,7 +117,8 @@ void ConvertedLogFrameSource::finish() {
   report_corrupt(record_, problem());
 }
 
-FrameSource::Read ConvertedLogFrameSource::read(can::CanFrame* frame, int /*timeout_ms*/) {
+FrameSource::Read ConvertedLogFrameSource::next_frame(can::CanFrame* frame,
+                                                      std::int64_t* position) {
   can::CandumpRecord record;
   while (have_line_ || next_line()) {
     have_line_ = false;
@@ -143,7 +139,7 @@ FrameSource::Read ConvertedLogFrameSource::read(can::CanFrame* frame, int /*time
       continue;
     }
     interface_.assign(record.interface.data(), record.interface.size());
-    count_frame(record.frame, record_);
+    *position = record_;
     *frame = record.frame;
     return Read::kFrame;
   }

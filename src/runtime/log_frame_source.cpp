@@ -26,6 +26,18 @@ std::string refusal(can::LogFormat format) {
 
 }  // namespace
 
+FrameSource::Read LogFrameSource::read(can::CanFrame* frame, int /*timeout_ms*/) {
+  std::int64_t position = 0;
+  Read got = Read::kEnd;
+  while ((got = next_frame(frame, &position)) == Read::kFrame) {
+    if (!selection_ || selection_->take(interface_name())) {
+      count_frame(*frame, position);
+      break;
+    }
+  }
+  return got;
+}
+
 void LogFrameSource::count_frame(const can::CanFrame& frame, std::int64_t position) {
   position_ = position;
   ++stats_.frames;
@@ -42,7 +54,12 @@ void LogFrameSource::report_corrupt(std::int64_t position, const std::string& wh
 }
 
 std::string LogFrameSource::no_frames_reason() const {
-  if (stats_.frames > 0 || stats_.corrupt == 0) return "";
+  if (stats_.frames > 0) return "";
+  // Frames on other interfaces: the name is what is wrong, not the lines.
+  if (selection_ && (selection_->skipped() > 0 || stats_.corrupt == 0)) {
+    return path_ + ": " + selection_->none_taken_reason();
+  }
+  if (stats_.corrupt == 0) return "";
   const std::string unit(this->unit());
   return path_ + ": no frames: " + std::to_string(stats_.corrupt) + " of " +
          std::to_string(stats_.lines) + " " + unit + "s could not be read; the first, " + unit +

@@ -66,7 +66,7 @@ bool TextLogFrameSource::next_line() {
   return got;
 }
 
-FrameSource::Read TextLogFrameSource::read(can::CanFrame* frame, int /*timeout_ms*/) {
+FrameSource::Read TextLogFrameSource::next_frame(can::CanFrame* frame, std::int64_t* position) {
   can::CandumpRecord record;
   while (next_line()) {
     ++line_no_;
@@ -79,7 +79,7 @@ FrameSource::Read TextLogFrameSource::read(can::CanFrame* frame, int /*timeout_m
     switch (parser_->parse(line_, &record, &why_)) {
       case can::CandumpLine::kFrame:
         if (record.interface != interface_) interface_.assign(record.interface);
-        count_frame(record.frame, line_no_);
+        *position = line_no_;
         *frame = record.frame;
         return Read::kFrame;
       case can::CandumpLine::kComment:

@@ -118,7 +118,8 @@ void log_mapping(const signals::CanInputs& can) {
 
 struct OpenedInput {
   std::unique_ptr<runtime::InputSource> source;
-  int exit_code = kExitOk;  ///< when source is null
+  int exit_code = kExitOk;                       ///< when source is null
+  const runtime::LogFrameSource* log = nullptr;  ///< --replay: the source's frames
 };
 
 /// --can IFACE: the interface's frames (its DBC ids only: kernel filters); --can-fd FD: the
@@ -168,6 +169,7 @@ OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
   log_mapping(*can.inputs);
   std::string error;
   std::unique_ptr<runtime::FrameSource> frames;
+  const runtime::LogFrameSource* replayed = nullptr;
   if (!options.replay_log.empty()) {
     std::unique_ptr<runtime::LogFrameSource> log =
         runtime::open_log_frame_source(options.replay_log, &error);
@@ -176,9 +178,14 @@ OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
       return {nullptr, kExitUsage};
     }
     spdlog::info("{}: {}", options.replay_log, can::log_format_name(log->format()));
+    if (!options.replay_interface.empty()) {
+      log->select_interface(options.replay_interface);
+      spdlog::info("{}: interface {} only", options.replay_log, options.replay_interface);
+    }
     log->on_error([log = log.get()](const can::CandumpError& e) {
       if (log->stats().corrupt <= 10) spdlog::warn("{} (skipped)", e.message);
     });
+    replayed = log.get();
     frames = std::move(log);
   } else {
     int exit_code = kExitOk;
@@ -187,7 +194,7 @@ OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
   }
   return {std::make_unique<runtime::CanInputSource>(std::move(frames), can.inputs->decoder,
                                                     can.inputs->mapping),
-          kExitOk};
+          kExitOk, replayed};
 }
 
 OpenedInput open_input(const DaemonOptions& options, const Config& config,
@@ -213,8 +220,8 @@ std::string state_path(const DaemonOptions& options, const ServiceSettings& sett
 }
 
 /// Resumes the pipeline from the saved state when it fits. True when restored.
-bool restore_state(const std::string& path, Pipeline& pipeline) {
-  const StateRestore r = restore_pipeline_state(path, pipeline);
+bool restore_state(const std::string& path, runtime::TickStep& step) {
+  const StateRestore r = restore_pipeline_state(path, step);
   if (r.refused) spdlog::warn("{}", r.message);
   if (r.restored) spdlog::info("{}", r.message);
   return r.restored;
@@ -308,8 +315,8 @@ bool save_final_state(runtime::InputSource& source, runtime::TickStep& step, Sha
   const std::string input_problems = source.input_report();
   if (!input_problems.empty()) spdlog::info("inputs: {}", input_problems);
   daemon::SnapshotSlot final_slot = shared.snapshot.read();
-  if (final_slot.valid && step.pipeline().flush()) {
-    final_slot.snapshot = step.pipeline().snapshot();
+  if (final_slot.valid && step.flush()) {
+    final_slot.snapshot = step.snapshot();
     spdlog::info("open batch flushed into the final state: pairs used {}",
                  final_slot.snapshot.pairs_used);
   }
@@ -364,12 +371,27 @@ int exit_code_of(const runtime::InputSource& source, const Shared& shared) {
   return kExitOk;
 }
 
+/// --replay --interface: the frames of other interfaces skipped, logged; a recording played to
+/// its end (`ended`) without a frame on the interface is bad input (2). 0 otherwise.
+int report_interface(const runtime::LogFrameSource* log, bool ended) {
+  const runtime::InterfaceSelection* selection =
+      log != nullptr ? log->interface_selection() : nullptr;
+  if (selection == nullptr) return kExitOk;
+  spdlog::info("{}: interface {}: {} frames of other interfaces skipped", log->path(),
+               selection->name(), selection->skipped());
+  const std::string none = ended ? log->no_frames_reason() : "";
+  if (none.empty()) return kExitOk;
+  spdlog::error("{}", none);
+  return kExitUsage;
+}
+
 /// Everything a run needs once the configuration is read and the input is open.
 struct Run {
   const DaemonOptions& options;
   const ServiceSettings& settings;
   Plan plan;
   runtime::InputSource& source;
+  const runtime::LogFrameSource* log;  ///< --replay: the source's frames; else null
   lcm::LCM& lcm;
   std::int64_t start_mono_ns;
 };
@@ -379,7 +401,7 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
   runtime::TickStep step(params);
   const std::string state_file = state_path(r.options, r.settings);
   const bool restored =
-      !state_file.empty() && !r.options.no_restore && restore_state(state_file, step.pipeline());
+      !state_file.empty() && !r.options.no_restore && restore_state(state_file, step);
   if (r.plan.recorded && !r.plan.max_speed) {  // at max speed the tick driver reads it
     r.plan.has_first_record = r.source.next_record(0) == runtime::InputSource::Read::kRecord;
     r.plan.t0_us = r.plan.has_first_record ? r.source.record_time_us() : 0;
@@ -412,7 +434,9 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
   const DaemonStatus final_status = daemon::gather_status(ctx, shared, true);
   if (publisher.publish_status(final_status)) shared.published.fetch_add(1);
   log_stop(final_status, saved, publisher, shared);
-  return exit_code_of(r.source, shared);
+  const int exit_code = exit_code_of(r.source, shared);
+  const int interface_code = report_interface(r.log, stop_signal == 0 && exit_code == kExitOk);
+  return exit_code != kExitOk ? exit_code : interface_code;
 }
 
 }  // namespace
@@ -451,7 +475,7 @@ int run_daemon(const DaemonOptions& options) {
     spdlog::error("cannot open LCM at '{}'", settings.lcm.url);
     return kExitFailure;
   }
-  Run run{options, settings, *plan, *input.source, lcm, start_mono};
+  Run run{options, settings, *plan, *input.source, input.log, lcm, start_mono};
   return serve(run, signals, loaded.config->pipeline);
 }
 

@@ -52,7 +52,7 @@ void apply_realtime(const RealtimeSettings& rt) {
 /// Hands a record to the estimator thread. A recording waits for room (back-pressure: nothing of
 /// a log is lost); a live bus never waits: the record is dropped and counted.
 void push_input(const runtime::InputRecord& record, Shared& shared, bool block) {
-  while (!shared.inputs.push(record)) {
+  while (!shared.inputs.records.push(record)) {
     if (!block) {
       shared.input_drops.fetch_add(1, std::memory_order_relaxed);
       return;
@@ -92,9 +92,9 @@ void receive_recording(runtime::InputSource& source, Shared& shared, const Plan&
     push_input(record, shared, true);
     if (source.next_record(0) != runtime::InputSource::Read::kRecord) break;
     // A log in time order: every record stamped before the next one has been pushed.
-    shared.pushed_through_us.store(source.record_time_us() - 1, std::memory_order_release);
+    shared.inputs.pushed_through_us.store(source.record_time_us() - 1, std::memory_order_release);
   }
-  shared.input_ended.store(true, std::memory_order_release);
+  shared.inputs.ended.store(true, std::memory_order_release);
 }
 
 /// Reads a live record, re-stamps it into the tick clock and hands it over (dropped, counted,
@@ -188,7 +188,7 @@ void after_tick(const runtime::TickRecord& record, runtime::TickStep& step,
   shared.latest.write(record);
   shared.heartbeat.store(k + 1, std::memory_order_release);
   if (k % plan.snapshot_every_ticks == 0) {
-    shared.snapshot.write(SnapshotSlot{step.pipeline().snapshot(), record.estimate.time_us, true});
+    shared.snapshot.write(SnapshotSlot{step.snapshot(), record.estimate.time_us, true});
   }
   if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz)) == 0) {
     shared.timing.write(stats.summary());
@@ -212,108 +212,73 @@ std::int64_t run_log_time(runtime::InputSource& source, runtime::TickStep& step,
     after_tick(record, step, source, shared, plan, stats, k);
   });
   if (!run.any_record) spdlog::warn("{}: no records", source.describe());
-  shared.input_ended.store(true, std::memory_order_release);
+  shared.inputs.ended.store(true, std::memory_order_release);
   return run.ticks;
 }
-
-/// The records the receive thread put in the ring, folded into the source's table up to a
-/// tick's time: records stamped after the tick wait for their own (as in offline replay, tick k
-/// sees exactly the records stamped <= T_k). Live records are stamped in the tick clock, so a
-/// record is held for one tick at most.
-class RingDrain {
- public:
-  RingDrain(runtime::InputSource& source, Shared& shared) : source_(source), shared_(shared) {}
-
-  /// Applies every record in the ring stamped <= t; those stamped <= previous_t came too late
-  /// for their tick (counted).
-  void drain(TimeUs t, TimeUs previous_t) {
-    for (;;) {
-      if (!has_held_) {
-        if (!shared_.inputs.pop(&held_)) return;
-        has_held_ = true;
-      }
-      if (held_.time_us > t) return;
-      if (held_.time_us <= previous_t) {
-        shared_.late_records.fetch_add(1, std::memory_order_relaxed);
-      }
-      source_.apply(held_);
-      has_held_ = false;
-      if (!has_record_ || held_.time_us > last_record_us_) last_record_us_ = held_.time_us;
-      has_record_ = true;
-    }
-  }
-
-  /// A recording: waits until the receive thread has pushed every record stamped <= t (it is
-  /// due P / 2 earlier; this waits only when it lags), so that the tick sees exactly what
-  /// offline replay sees at any speed; drains meanwhile, so that a full ring cannot block the
-  /// receive thread. A held record (stamped after t) means they all came.
-  void wait_for_recording(TimeUs t, TimeUs previous_t) {
-    while (!has_held_ && shared_.pushed_through_us.load(std::memory_order_acquire) < t &&
-           !shared_.input_ended.load(std::memory_order_acquire) &&
-           !shared_.stop.load(std::memory_order_relaxed)) {
-      std::this_thread::sleep_for(std::chrono::microseconds(50));
-      drain(t, previous_t);
-    }
-  }
-
-  /// Every record applied and t after the latest: a finished recording has no tick at t.
-  bool past_last_record(TimeUs t) const {
-    return !has_held_ && (!has_record_ || t > last_record_us_);
-  }
-
- private:
-  runtime::InputSource& source_;
-  Shared& shared_;
-  runtime::InputRecord held_;  ///< popped from the ring, not applied yet (stamped after its tick)
-  bool has_held_ = false;
-  TimeUs last_record_us_ = 0;
-  bool has_record_ = false;
-};
 
 /// A live bus or a paced recording: tick k wakes half a period after T_k on CLOCK_MONOTONIC, so
 /// that the records stamped up to T_k have time to arrive (a recording's record stamped T_k is
 /// pushed at mono0 + k P; a live frame is read within microseconds of its kernel stamp when the
-/// receive thread is not starved). A recording's tick also waits for a lagging receive thread,
-/// so it sees exactly what offline replay sees; a live frame read more than P / 2 after its
-/// stamp is applied at the next tick and counted as late. The estimate is P / 2 (5 ms at
-/// 100 Hz) later than it could be, which nothing that follows a mass needs. Returns the ticks.
+/// receive thread is not starved). The estimate is P / 2 (5 ms at 100 Hz) later than it could
+/// be, which nothing that follows a mass needs.
+class MonotonicClock final : public runtime::TickClock {
+ public:
+  MonotonicClock(const Plan& plan, const std::atomic<bool>& stop, TickStats& stats)
+      : plan_(plan),
+        stop_(stop),
+        stats_(stats),
+        max_behind_ticks_(std::max<std::int64_t>(1, kNsPerSecond / plan.period_ns)) {}
+
+  bool wait_for_tick(std::int64_t k, TimeUs /*t_k*/) override {
+    const std::int64_t deadline = deadline_ns(k);
+    if (stop_.load(std::memory_order_relaxed) || !sleep_until(deadline, stop_)) return false;
+    wake_ns_ = mono_ns();
+    stats_.on_wake(deadline, wake_ns_);
+    return true;
+  }
+  /// Right after tick k's computation (before it is published): its time and overrun.
+  void computed(std::int64_t k) {
+    const std::int64_t done = mono_ns();
+    stats_.on_done(done - wake_ns_, done > deadline_ns(k + 1));
+  }
+  /// A live bus after a long stall (suspend, debugger): the missed ticks are given up, counted,
+  /// after 1 s. A recording never skips: a replay the machine cannot keep up with runs late
+  /// (overruns counted) and still gives the offline estimates.
+  std::int64_t next_tick(std::int64_t k) override {
+    const std::int64_t behind = (mono_ns() - deadline_ns(k + 1)) / plan_.period_ns;
+    if (plan_.recorded || behind <= max_behind_ticks_) return k + 1;
+    stats_.on_skipped(behind);
+    return k + 1 + behind;
+  }
+
+ private:
+  std::int64_t deadline_ns(std::int64_t k) const {
+    return plan_.mono0_ns + plan_.period_ns / 2 + k * plan_.period_ns;
+  }
+
+  const Plan& plan_;
+  const std::atomic<bool>& stop_;
+  TickStats& stats_;
+  std::int64_t max_behind_ticks_;
+  std::int64_t wake_ns_ = 0;
+};
+
+/// A live bus or a paced recording, from the receive thread's ring: the tick driver applies the
+/// records stamped <= T_k (a recording's tick waits for a lagging receive thread, so it sees
+/// exactly what offline replay sees; a live frame read more than P / 2 after its stamp is
+/// applied at the next tick and counted as late). Returns the ticks passed.
 std::int64_t run_paced(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
                        const Plan& plan, TickStats& stats) {
-  const std::int64_t max_behind_ticks =
-      std::max<std::int64_t>(1, static_cast<std::int64_t>(kNsPerSecond / plan.period_ns));
-  const std::int64_t offset_ns = plan.period_ns / 2;
-  RingDrain ring(source, shared);
-  TimeUs previous_t = INT64_MIN;
-  std::int64_t k = 0;
-  while (!shared.stop.load(std::memory_order_relaxed)) {
-    const std::int64_t deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
-    if (!sleep_until(deadline, shared.stop)) break;
-    const std::int64_t wake = mono_ns();
-    stats.on_wake(deadline, wake);
-    const TimeUs t = plan.tick_time(k);
-    ring.drain(t, previous_t);
-    if (plan.recorded) ring.wait_for_recording(t, previous_t);  // counts in the compute time
-    // Read before the last drain: once it is set, every record is in the ring.
-    const bool ended = plan.recorded && shared.input_ended.load(std::memory_order_acquire);
-    ring.drain(t, previous_t);
-    if (ended && ring.past_last_record(t)) break;  // tick up to the last record, as offline
+  MonotonicClock clock(plan, shared.stop, stats);
+  runtime::RingFeed feed(shared.inputs, plan.recorded, shared.stop);
+  runtime::TickDriver driver(source, feed, runtime::TickGrid(plan.t0_us, plan.tick_rate_hz));
+  const runtime::TickRun run = driver.run(clock, [&](std::int64_t k, TimeUs t) {
     const runtime::TickRecord& record = step.tick(k, t, source);
-    previous_t = t;
-    const std::int64_t done = mono_ns();
-    ++k;
-    const std::int64_t next_deadline = plan.mono0_ns + offset_ns + k * plan.period_ns;
-    stats.on_done(done - wake, done > next_deadline);
-    after_tick(record, step, source, shared, plan, stats, k - 1);
-    // A live bus after a long stall (suspend, debugger): give the missed ticks up, counted,
-    // after 1 s. A recording never skips: a replay the machine cannot keep up with runs late
-    // (overruns counted) and still gives the offline estimates.
-    const std::int64_t behind = (mono_ns() - next_deadline) / plan.period_ns;
-    if (!plan.recorded && behind > max_behind_ticks) {
-      k += behind;
-      stats.on_skipped(behind);
-    }
-  }
-  return k;
+    clock.computed(k);
+    shared.late_records.store(driver.progress().late_records, std::memory_order_relaxed);
+    after_tick(record, step, source, shared, plan, stats, k);
+  });
+  return run.ticks;
 }
 
 }  // namespace
@@ -324,7 +289,7 @@ void receive_thread(runtime::InputSource& source, Shared& shared, const Plan& pl
   } else if (plan.has_first_record) {
     receive_recording(source, shared, plan);
   } else {
-    shared.input_ended.store(true, std::memory_order_release);
+    shared.inputs.ended.store(true, std::memory_order_release);
   }
 }
 
@@ -337,9 +302,8 @@ void estimator_thread(runtime::InputSource& source, runtime::TickStep& step, Sha
   // Final state for the main thread (status, persistence).
   shared.timing.write(stats.summary());
   publish_health(source, shared);
-  shared.snapshot.write(
-      SnapshotSlot{step.pipeline().snapshot(), step.last().estimate.time_us, ticks > 0});
-  shared.estimator_done.store(plan.recorded && shared.input_ended.load());
+  shared.snapshot.write(SnapshotSlot{step.snapshot(), step.last().estimate.time_us, ticks > 0});
+  shared.estimator_done.store(plan.recorded && shared.inputs.ended.load());
 }
 
 // --------------------------------------------------------------------------- status and publisher
@@ -393,7 +357,7 @@ DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stoppi
   } else if (health.state == runtime::SourceState::kDown) {
     s.state = DaemonState::kInputLost;
   } else if (health.state == runtime::SourceState::kEnded ||
-             shared.input_ended.load(std::memory_order_relaxed)) {
+             shared.inputs.ended.load(std::memory_order_relaxed)) {
     s.state = DaemonState::kInputEnded;
   } else {
     s.state = s.has_tick ? DaemonState::kRunning : DaemonState::kStarting;

@@ -14,12 +14,13 @@
 
 #include "vmass/core/pipeline.hpp"
 #include "vmass/runtime/input_source.hpp"
+#include "vmass/runtime/record_ring.hpp"
 #include "vmass/runtime/seqlock.hpp"
+#include "vmass/runtime/spsc_queue.hpp"
 #include "vmass/runtime/tick_grid.hpp"
 #include "vmass/runtime/tick_step.hpp"
 #include "vmass/service/lcm_publisher.hpp"
 #include "vmass/service/service_config.hpp"
-#include "vmass/service/spsc_queue.hpp"
 #include "vmass/service/tick_stats.hpp"
 
 namespace vmass::service::daemon {
@@ -41,12 +42,13 @@ struct Shared {
   }
   ~Shared() { sem_destroy(&queue_sem); }
 
-  std::atomic<bool> stop{false};             ///< main -> receive, estimator
-  std::atomic<bool> stop_publisher{false};   ///< main -> publisher (after the estimator joined)
-  std::atomic<bool> estimator_done{false};   ///< a recording was played to its end
-  SpscQueue<runtime::InputRecord> inputs;    ///< receive -> estimator (frames, rows)
-  std::atomic<std::int64_t> input_drops{0};  ///< live records the full input ring refused
-  SpscQueue<runtime::TickRecord> queue;      ///< estimator -> publisher
+  std::atomic<bool> stop{false};            ///< main -> receive, estimator
+  std::atomic<bool> stop_publisher{false};  ///< main -> publisher (after the estimator joined)
+  std::atomic<bool> estimator_done{false};  ///< a recording was played to its end
+  /// receive -> estimator (frames, rows); `ended`: the input ended (a recording's end)
+  runtime::RecordRing inputs;
+  std::atomic<std::int64_t> input_drops{0};       ///< live records the full input ring refused
+  runtime::SpscQueue<runtime::TickRecord> queue;  ///< estimator -> publisher
   sem_t queue_sem;
   std::atomic<std::int64_t> queue_drops{0};
   std::atomic<std::int64_t> publish_failures{0};        ///< publisher: messages not published
@@ -58,10 +60,7 @@ struct Shared {
   runtime::SeqLock<runtime::InputHealthRecord> health;  ///< estimator -> status
   std::atomic<std::int64_t> heartbeat{0};               ///< ticks run (watchdog evidence)
   std::atomic<std::int64_t> state_saves{0};
-  std::atomic<bool> input_ended{false};
   std::atomic<std::int64_t> late_records{0};  ///< applied after the tick they belonged to
-  /// A recording: every record stamped <= this is in the input ring (receive -> estimator).
-  std::atomic<TimeUs> pushed_through_us{INT64_MIN};
 };
 
 /// The fixed parameters of a run.
@@ -97,7 +96,7 @@ struct StatusContext {
 /// clock, dropped and counted when the ring is full.
 void receive_thread(runtime::InputSource& source, Shared& shared, const Plan& plan);
 
-/// Ticks the pipeline: through runtime::TickDriver in log time at `--speed max`, else at the
+/// Ticks the pipeline through runtime::TickDriver: in log time at `--speed max`, else at the
 /// plan's period on CLOCK_MONOTONIC from the input ring; publishes every TickRecord.
 void estimator_thread(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
                       const Plan& plan);

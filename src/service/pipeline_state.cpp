@@ -1,6 +1,7 @@
 #include "vmass/service/pipeline_state.hpp"
 
 #include <cstdio>
+#include <functional>
 
 #include "vmass/service/state_plausibility.hpp"
 #include "vmass/service/state_store.hpp"
@@ -19,9 +20,10 @@ std::string unbelievable(const PipelineSnapshot& snapshot, TimeUs saved_time_us,
   return why;
 }
 
-}  // namespace
-
-StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline) {
+/// The checks, then `resume(snapshot)`; `pipeline` is read for its parameters and, once
+/// restored, its estimate.
+StateRestore restore_checked(const std::string& path, const Pipeline& pipeline,
+                             const std::function<bool(const PipelineSnapshot&)>& resume) {
   StateRestore out;
   const StateLoad state = load_state_file(path, state_fingerprint(pipeline.params()));
   if (state.status == StateLoadStatus::kMissing) return out;
@@ -38,7 +40,7 @@ StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline)
   }
   PipelineSnapshot snapshot = state.state.snapshot;
   snapshot.time_us = state.state.saved_time_us;  // the file keeps it beside the snapshot
-  if (!pipeline.restore(snapshot)) {
+  if (!resume(snapshot)) {
     out.message = path + ": saved state refused by the estimator; starting fresh";
     return out;
   }
@@ -52,6 +54,18 @@ StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline)
                 (pipeline.params().suspension.carries_load() ? "a standstill" : "the drive") +
                 " will re-check the load";
   return out;
+}
+
+}  // namespace
+
+StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline) {
+  return restore_checked(path, pipeline,
+                         [&](const PipelineSnapshot& s) { return pipeline.restore(s); });
+}
+
+StateRestore restore_pipeline_state(const std::string& path, runtime::TickStep& step) {
+  return restore_checked(path, step.pipeline(),
+                         [&](const PipelineSnapshot& s) { return step.restore(s); });
 }
 
 StateSave save_pipeline_state(const std::string& path, const PipelineSnapshot& snapshot,

@@ -64,13 +64,7 @@ ServiceSettingsLoad load_service_settings(const Config& config) {
   // A bound violation is reported at the key's line: re-read through the reader to fail there.
   try {
     YamlReader lcm(config.lcm, config.file, "lcm");
-    lcm.read("url", &s.lcm.url);
-    lcm.read("estimate_channel", &s.lcm.estimate_channel);
-    lcm.read("status_channel", &s.lcm.status_channel);
-    lcm.read("pairs_channel", &s.lcm.pairs_channel);
-    lcm.read("estimate_decimation", &s.lcm.estimate_decimation);
-    lcm.read("status_period_s", &s.lcm.status_period_s);
-    lcm.read("publish_pairs", &s.lcm.publish_pairs);
+    read_fields(lcm, kLcmFields, &s.lcm);
     lcm.reject_unknown_keys();
     const std::string lcm_error = s.lcm.validate();
     if (!lcm_error.empty()) {
@@ -79,23 +73,9 @@ ServiceSettingsLoad load_service_settings(const Config& config) {
     }
 
     YamlReader daemon(config.daemon, config.file, "daemon");
-    daemon.read("can_interface", &s.daemon.can_interface);
-    daemon.read("state_file", &s.daemon.state_file);
-    daemon.read("persist_interval_s", &s.daemon.persist_interval_s);
-    daemon.read("input_timeout_s", &s.daemon.input_timeout_s);
-    daemon.read("publish_queue", &s.daemon.publish_queue);
-    daemon.read("receive_period_ms", &s.daemon.receive_period_ms);
+    read_fields(daemon, kDaemonFields, &s.daemon);
     YamlReader rt = daemon.child("realtime");
-    rt.read("priority", &s.daemon.realtime.priority);
-    std::vector<double> cpus;
-    rt.read("cpu_affinity", &cpus);
-    for (double cpu : cpus) {
-      if (cpu != std::floor(cpu) || !(cpu >= 0.0 && cpu < 1024.0)) {
-        rt.fail("cpu_affinity", "CPUs must be integers in [0, 1023]");
-      }
-      s.daemon.realtime.cpu_affinity.push_back(static_cast<int>(cpu));
-    }
-    rt.read("lock_memory", &s.daemon.realtime.lock_memory);
+    read_fields(rt, kRealtimeFields, &s.daemon.realtime);
     rt.reject_unknown_keys();
     daemon.reject_unknown_keys();
     const std::string daemon_error = s.daemon.validate();

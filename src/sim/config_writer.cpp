@@ -5,48 +5,53 @@
 #include <yaml-cpp/yaml.h>
 
 #include "text_file.hpp"
+#include "vmass/config/estimator_section.hpp"
 #include "vmass/config/suspension_section.hpp"
+#include "vmass/config/vehicle_section.hpp"
 #include "vmass/sim/csv_writer.hpp"
 #include "vmass/sim/suspension.hpp"
 
 namespace vmass::sim {
 
-ConfigValues make_config_values(const TrueVehicle& v, const MassProperties& loaded,
-                                double tick_rate_hz, const CalibrationErrors& errors) {
-  ConfigValues c;
-  c.empty_mass_kg = v.empty.mass_kg;
-  c.wheelbase_m = v.wheelbase_m;
-  c.cg_to_front_axle_m = loaded.cg_x_m;
-  c.wheel_radius_m = v.wheel_radius_m;
-  c.brake_gain_n_per_pa = v.brake_gain_n_per_pa;
-  c.steering_ratio = v.steering_ratio;
+PipelineParams make_config_params(const TrueVehicle& v, const MassProperties& loaded,
+                                  double tick_rate_hz, const CalibrationErrors& errors) {
+  PipelineParams c;
+  VehicleParams& cv = c.vehicle;
+  cv.empty_mass_kg = v.empty.mass_kg;
+  cv.wheelbase_m = v.wheelbase_m;
+  cv.cg_to_front_axle_m = loaded.cg_x_m;
+  cv.wheel_radius_m = v.wheel_radius_m;
+  cv.brake_gain_n_per_pa = v.brake_gain_n_per_pa;
+  cv.steering_ratio = v.steering_ratio;
   const AxleCorneringStiffness cs = static_cornering_stiffness(v, loaded);
-  c.cornering_stiffness_front_n_per_rad = cs.front_n_per_rad;
-  c.cornering_stiffness_rear_n_per_rad = cs.rear_n_per_rad;
-  c.rotating_mass_kg = rotating_mass_kg(v.powertrain, 0, v.wheel_radius_m);
+  cv.cornering_stiffness_front_n_per_rad = cs.front_n_per_rad;
+  cv.cornering_stiffness_rear_n_per_rad = cs.rear_n_per_rad;
+  cv.rotating_mass_kg = rotating_mass_kg(v.powertrain, 0, v.wheel_radius_m);
   for (int g = 1; g <= v.powertrain.gear_count(); ++g) {
-    c.rotating_mass_by_gear_kg.push_back(rotating_mass_kg(v.powertrain, g, v.wheel_radius_m));
+    cv.rotating_mass_by_gear_kg.push_back(rotating_mass_kg(v.powertrain, g, v.wheel_radius_m));
   }
-  c.gravity_mps2 = v.gravity_mps2;
+  cv.gravity_mps2 = v.gravity_mps2;
 
   const SuspensionParams& sp = v.rear_right_suspension;
+  vmass::SuspensionParams& spring = c.suspension;  // the estimator's (config) parameters
   const StaticLoads empty_loads = static_loads(v, v.empty);
   const double empty_sprung_n = empty_loads.rear_right_n - sp.unsprung_mass_kg * v.gravity_mps2;
-  c.empty_deflection_m = spring_compression(sp, empty_sprung_n) - sp.sensor_reference_m;
-  c.progressive_knee_m = sp.knee_compression_m - sp.sensor_reference_m;
-  c.stiffness_n_per_m = sp.stiffness_n_per_m * errors.suspension_stiffness_scale;
-  c.progressive_rate_n_per_m2 = sp.progressive_rate_n_per_m2 * errors.suspension_stiffness_scale;
+  spring.empty_deflection_m = spring_compression(sp, empty_sprung_n) - sp.sensor_reference_m;
+  spring.progressive_knee_m = sp.knee_compression_m - sp.sensor_reference_m;
+  spring.stiffness_n_per_m = sp.stiffness_n_per_m * errors.suspension_stiffness_scale;
+  spring.progressive_rate_n_per_m2 =
+      sp.progressive_rate_n_per_m2 * errors.suspension_stiffness_scale;
   // Eq. (3) inverted at the knee: added load (at the centre of gravity) that reaches it.
-  c.linear_range_kg = 2.0 * c.wheelbase_m * c.stiffness_n_per_m *
-                      (c.progressive_knee_m - c.empty_deflection_m) /
-                      (c.cg_to_front_axle_m * c.gravity_mps2);
-  c.calibrated_range_kg = errors.calibrated_range_kg;
+  spring.linear_range_kg = 2.0 * cv.wheelbase_m * spring.stiffness_n_per_m *
+                           (spring.progressive_knee_m - spring.empty_deflection_m) /
+                           (cv.cg_to_front_axle_m * cv.gravity_mps2);
+  spring.calibrated_range_kg = errors.calibrated_range_kg;
 
-  c.tick_rate_hz = tick_rate_hz;
+  c.estimator.differencing.tick_rate_hz = tick_rate_hz;
   return c;
 }
 
-void write_config_yaml(std::ostream& os, const ConfigValues& c,
+void write_config_yaml(std::ostream& os, const PipelineParams& c,
                        const std::vector<std::string>& header_comment) {
   for (const std::string& line : header_comment)
     os << "#" << (line.empty() ? "" : " ") << line << '\n';
@@ -54,38 +59,21 @@ void write_config_yaml(std::ostream& os, const ConfigValues& c,
   e.SetDoublePrecision(12);
   e << YAML::BeginMap;
   e << YAML::Key << "vehicle" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "empty_mass_kg" << YAML::Value << c.empty_mass_kg;
-  e << YAML::Key << "wheelbase_m" << YAML::Value << c.wheelbase_m;
-  e << YAML::Key << "cg_to_front_axle_m" << YAML::Value << c.cg_to_front_axle_m
-    << YAML::Comment("as loaded at the start of the scenario");
-  e << YAML::Key << "wheel_radius_m" << YAML::Value << c.wheel_radius_m;
-  e << YAML::Key << "brake_gain_n_per_pa" << YAML::Value << c.brake_gain_n_per_pa;
-  e << YAML::Key << "steering_ratio" << YAML::Value << c.steering_ratio;
-  e << YAML::Key << "cornering_stiffness_front_n_per_rad" << YAML::Value
-    << c.cornering_stiffness_front_n_per_rad << YAML::Comment("small-slip, static axle load");
-  e << YAML::Key << "cornering_stiffness_rear_n_per_rad" << YAML::Value
-    << c.cornering_stiffness_rear_n_per_rad;
-  e << YAML::Key << "rotating_mass_kg" << YAML::Value << c.rotating_mass_kg
-    << YAML::Comment("clutch open (gear signal 0 during shifts)");
-  e << YAML::Key << "rotating_mass_by_gear_kg" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-  for (double m : c.rotating_mass_by_gear_kg) e << m;
-  e << YAML::EndSeq;
-  e << YAML::Key << "gravity_mps2" << YAML::Value << c.gravity_mps2;
+  emit_fields(e, kVehicleFields, c.vehicle,
+              {{"cg_to_front_axle_m", "as loaded at the start of the scenario"},
+               {"cornering_stiffness_front_n_per_rad", "small-slip, static axle load"},
+               {"rotating_mass_kg", "clutch open (gear signal 0 during shifts)"}},
+              {"empty_mass_kg", "wheelbase_m", "cg_to_front_axle_m", "wheel_radius_m",
+               "brake_gain_n_per_pa", "steering_ratio", "cornering_stiffness_front_n_per_rad",
+               "cornering_stiffness_rear_n_per_rad", "rotating_mass_kg", "rotating_mass_by_gear_kg",
+               "gravity_mps2"});
   e << YAML::EndMap;
-
-  vmass::SuspensionParams suspension;  // the estimator's (config) parameters
-  suspension.stiffness_n_per_m = c.stiffness_n_per_m;
-  suspension.empty_deflection_m = c.empty_deflection_m;
-  suspension.progressive_knee_m = c.progressive_knee_m;
-  suspension.progressive_rate_n_per_m2 = c.progressive_rate_n_per_m2;
-  suspension.linear_range_kg = c.linear_range_kg;
-  suspension.calibrated_range_kg = c.calibrated_range_kg;
-  emit_suspension_section(e, suspension, {"calibrated; see header"});
-
+  emit_suspension_section(e, c.suspension, {{"stiffness_n_per_m", "calibrated; see header"}});
+  // The estimator runs on its defaults, which must hold on any car (nothing here is tuned to
+  // the simulator; docs/estimator.md): its type, and the scenario's tick rate if not the default.
   e << YAML::Key << "estimator" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "type" << YAML::Value << "bayes" << YAML::Comment("or rls");
-  // Nothing else: the estimator runs on its defaults, which must hold on any car (nothing here
-  // is tuned to the simulator; docs/estimator.md).
+  emit_fields(e, kEstimatorFields, c.estimator, {{"type", "or rls"}}, {"type"});
+  emit_fields(e, kDifferencingFields, c.estimator.differencing, {}, FieldSelection::kRequiredOrSet);
   e << YAML::EndMap;
   e << YAML::EndMap;
   os << e.c_str() << '\n';
@@ -94,7 +82,7 @@ void write_config_yaml(std::ostream& os, const ConfigValues& c,
 std::string write_config_file(const SimulationResult& result, const std::string& dir,
                               const CalibrationErrors& errors) {
   const TrueVehicle& v = result.vehicle;
-  const ConfigValues c = make_config_values(v, result.initial_mass, result.tick_rate_hz, errors);
+  const PipelineParams c = make_config_params(v, result.initial_mass, result.tick_rate_hz, errors);
   const double true_c = v.rear_right_suspension.stiffness_n_per_m;
   std::vector<std::string> header = {
       "vmass config for the simulated car, written by vmass-sim.",

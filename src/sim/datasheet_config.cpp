@@ -1,8 +1,11 @@
 #include "vmass/sim/datasheet_config.hpp"
 
-#include <cstdio>
 #include <sstream>
 
+#include <yaml-cpp/yaml.h>
+
+#include "vmass/config/suspension_section.hpp"
+#include "vmass/config/vehicle_section.hpp"
 #include "vmass/sim/powertrain.hpp"
 #include "vmass/sim/suspension.hpp"
 #include "vmass/sim/vehicle_bus.hpp"
@@ -11,85 +14,72 @@ namespace vmass::sim {
 
 namespace {
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-void write_vehicle(std::ostringstream& os, const DrawnVehicle& d, bool errors, Knowledge k) {
+/// The `vehicle:` values its engineer knows: the datasheet's, with its errors when `errors`.
+VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k) {
   const TrueVehicle& v = d.vehicle;
   const KnowledgeErrors& e = d.errors;
   auto err = [&](double x) { return errors ? x : 0.0; };
   const AxleCorneringStiffness cs = static_cornering_stiffness(v, v.empty);
-  const double radius =
+  VehicleParams p;
+  p.empty_mass_kg = v.empty.mass_kg;
+  p.max_mass_kg = d.max_mass_kg;
+  p.wheelbase_m = v.wheelbase_m;
+  p.cg_to_front_axle_m = v.empty.cg_x_m + err(e.cg_position_m);
+  p.wheel_radius_m =
       v.wheel_radius_m * (1.0 + (k == Knowledge::kDatasheetScale ? e.wheel_radius : 0.0));
-  os << "vehicle:\n";
-  os << "  empty_mass_kg: " << num(v.empty.mass_kg) << "        # datasheet kerb mass\n";
-  os << "  max_mass_kg: " << num(d.max_mass_kg) << "\n";
-  os << "  wheelbase_m: " << num(v.wheelbase_m) << "\n";
-  os << "  cg_to_front_axle_m: " << num(v.empty.cg_x_m + err(e.cg_position_m))
-     << "   # empty car, from the datasheet's axle loads\n";
-  os << "  wheel_radius_m: " << num(radius) << "\n";
-  os << "  brake_gain_n_per_pa: " << num(v.brake_gain_n_per_pa * (1.0 + err(e.brake_gain))) << "\n";
-  os << "  steering_ratio: " << num(v.steering_ratio) << "\n";
-  os << "  cornering_stiffness_front_n_per_rad: "
-     << num(cs.front_n_per_rad * (1.0 + err(e.cornering_front))) << "   # at the empty axle load\n";
-  os << "  cornering_stiffness_rear_n_per_rad: "
-     << num(cs.rear_n_per_rad * (1.0 + err(e.cornering_rear))) << "\n";
+  p.brake_gain_n_per_pa = v.brake_gain_n_per_pa * (1.0 + err(e.brake_gain));
+  p.steering_ratio = v.steering_ratio;
+  p.cornering_stiffness_front_n_per_rad = cs.front_n_per_rad * (1.0 + err(e.cornering_front));
+  p.cornering_stiffness_rear_n_per_rad = cs.rear_n_per_rad * (1.0 + err(e.cornering_rear));
   const double rot = 1.0 + err(e.rotating_mass);
-  os << "  rotating_mass_kg: " << num(rotating_mass_kg(v.powertrain, 0, v.wheel_radius_m) * rot)
-     << "\n";
-  os << "  rotating_mass_by_gear_kg: [";
+  p.rotating_mass_kg = rotating_mass_kg(v.powertrain, 0, v.wheel_radius_m) * rot;
   for (int g = 1; g <= v.powertrain.gear_count(); ++g) {
-    os << (g > 1 ? ", " : "") << num(rotating_mass_kg(v.powertrain, g, v.wheel_radius_m) * rot);
+    p.rotating_mass_by_gear_kg.push_back(rotating_mass_kg(v.powertrain, g, v.wheel_radius_m) * rot);
   }
-  os << "]\n";
-  if (v.powertrain.transmission == Transmission::kElectric) os << "  electric_drive: true\n";
-  os << "  drag_area_m2: " << num(v.drag_area_m2 * (1.0 + err(e.drag_area))) << "\n";
-  os << "  rolling_resistance_coeff: "
-     << num(v.rolling_resistance_coeff * (1.0 + err(e.rolling_coeff))) << "\n";
-  if (k == Knowledge::kDatasheetScale) {
-    os << "  wheel_torque_accuracy_fraction: " << num(e.declared_torque_accuracy) << "\n";
-    os << "  wheel_radius_accuracy_fraction: " << num(e.declared_radius_accuracy) << "\n";
-  } else {
-    os << "  wheel_torque_accuracy_fraction: 0\n";
-    os << "  wheel_radius_accuracy_fraction: 0\n";
-  }
+  p.electric_drive = v.powertrain.transmission == Transmission::kElectric;
+  p.drag_area_m2 = v.drag_area_m2 * (1.0 + err(e.drag_area));
+  p.rolling_resistance_coeff = v.rolling_resistance_coeff * (1.0 + err(e.rolling_coeff));
+  const bool declared = k == Knowledge::kDatasheetScale;
+  p.wheel_torque_accuracy_fraction = declared ? e.declared_torque_accuracy : 0.0;
+  p.wheel_radius_accuracy_fraction = declared ? e.declared_radius_accuracy : 0.0;
   if (d.sensors.torque == TorqueSignal::kEngineTorque) {
-    const PowertrainParams& p = v.powertrain;
-    os << "  gear_ratios: [";
-    for (std::size_t i = 0; i < p.gear_ratios.size(); ++i) {
-      os << (i > 0 ? ", " : "") << num(p.gear_ratios[i]);
-    }
-    os << "]\n  final_drive_ratio: " << num(p.final_drive_ratio) << "\n";
-    os << "  driveline_efficiency: " << num(p.efficiency) << "\n";
+    p.gear_ratios = v.powertrain.gear_ratios;
+    p.final_drive_ratio = v.powertrain.final_drive_ratio;
+    p.driveline_efficiency = v.powertrain.efficiency;
   }
+  return p;
 }
 
-void write_suspension(std::ostringstream& os, const DrawnVehicle& d, bool errors) {
-  if (!d.sensors.deflection) return;
+/// The `suspension:` calibration (vmass-calibrate on ballast), with its error when `errors`.
+vmass::SuspensionParams datasheet_suspension(const DrawnVehicle& d, bool errors) {
   const TrueVehicle& v = d.vehicle;
-  os << "suspension:\n";
-  if (v.rear_levelling) {
-    os << "  levelled: true                # air suspension: the ride height carries no load\n";
-    return;
-  }
   const SuspensionParams& sp = v.rear_right_suspension;
   const StaticLoads empty = static_loads(v, v.empty);
-  const double empty_reading =
+  vmass::SuspensionParams p;
+  p.empty_deflection_m =
       spring_compression(sp, empty.rear_right_n - sp.unsprung_mass_kg * v.gravity_mps2) -
       sp.sensor_reference_m;
-  const double stiffness =
+  p.stiffness_n_per_m =
       sp.stiffness_n_per_m * (1.0 + (errors ? d.errors.suspension_stiffness : 0.0));
   const double knee = sp.knee_compression_m - sp.sensor_reference_m;
   // Eq. (3) inverted at the knee: the added load at the CG that reaches it.
-  const double linear_range =
-      2.0 * v.wheelbase_m * stiffness * (knee - empty_reading) / (v.empty.cg_x_m * v.gravity_mps2);
-  os << "  stiffness_n_per_m: " << num(stiffness) << "   # vmass-calibrate on ballast\n";
-  os << "  empty_deflection_m: " << num(empty_reading) << "\n";
-  os << "  linear_range_kg: " << num(linear_range) << "\n";
-  os << "  calibrated_range_kg: " << num(d.payload_capacity_kg) << "\n";
+  p.linear_range_kg = 2.0 * v.wheelbase_m * p.stiffness_n_per_m * (knee - p.empty_deflection_m) /
+                      (v.empty.cg_x_m * v.gravity_mps2);
+  p.calibrated_range_kg = d.payload_capacity_kg;
+  return p;
+}
+
+void emit_suspension(YAML::Emitter& out, const DrawnVehicle& d, bool errors) {
+  if (!d.sensors.deflection) return;
+  if (d.vehicle.rear_levelling) {
+    out << YAML::Key << "suspension" << YAML::Value << YAML::BeginMap << YAML::Key << "levelled"
+        << YAML::Value << true << YAML::Comment("air suspension: the ride height carries no load")
+        << YAML::EndMap;
+    return;
+  }
+  emit_suspension_section(out, datasheet_suspension(d, errors),
+                          {{"stiffness_n_per_m", "vmass-calibrate on ballast"}},
+                          FieldSelection::kRequiredOrSet);
 }
 
 }  // namespace
@@ -111,9 +101,19 @@ std::string datasheet_config_yaml(const DrawnVehicle& vehicle, Realism realism, 
      << "): datasheet values, the suspension calibration, the DBC.\n"
      << "# " << describe_vehicle(vehicle) << "\n"
      << "# No estimator section: the estimator runs on its defaults.\n";
-  write_vehicle(os, vehicle, errors, knowledge);
-  write_suspension(os, vehicle, errors);
-  os << VehicleBus(vehicle).can_config_yaml(dbc_file);
+  // What is known and differs from the loader's defaults: the defaults are what the loader
+  // would take anyway, and a datasheet does not give them.
+  YAML::Emitter out;
+  out.SetDoublePrecision(9);
+  out << YAML::BeginMap;
+  emit_vehicle_section(out, datasheet_vehicle(vehicle, errors, knowledge),
+                       {{"empty_mass_kg", "datasheet kerb mass"},
+                        {"cg_to_front_axle_m", "empty car, from the datasheet's axle loads"},
+                        {"cornering_stiffness_front_n_per_rad", "at the empty axle load"}},
+                       FieldSelection::kRequiredOrSet);
+  emit_suspension(out, vehicle, errors);
+  out << YAML::EndMap;
+  os << out.c_str() << "\n" << VehicleBus(vehicle).can_config_yaml(dbc_file);
   return os.str();
 }
 

@@ -120,7 +120,7 @@ std::string write_ballast_files(const SimulationResult& result, const std::strin
   suspension.progressive_rate_n_per_m2 = t.progressive_rate_n_per_m2;
   suspension.linear_range_kg = t.knee_added_mass_kg;
   suspension.calibrated_range_kg = schedule.added_mass_kg(schedule.steps);
-  y += suspension_section_yaml(suspension, {"", "", "", "", "ballast that reaches the knee", ""});
+  y += suspension_section_yaml(suspension, {{"linear_range_kg", "ballast that reaches the knee"}});
   y += "sensor:\n";
   y += "  zero_offset_m: " + num(t.sensor_offset_m) + "\n";
   y += "  noise_std_m: " + num(t.sensor_noise_std_m) + "\n";

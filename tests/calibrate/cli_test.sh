@@ -99,17 +99,17 @@ case "$case_name" in
     "$tool" --ballast sb/ballast.csv --config sb/config.yaml --json >csv.json || exit 1
     "$tool" --ballast sb/samples.csv --masses 0:100:800 --config sb/config.yaml --json \
       >series.json || exit 1
-    grep -q '"detected": true' csv.json && grep -q '"detected": true' series.json ||
+    grep -q '"detected": *true' csv.json && grep -q '"detected": *true' series.json ||
       { echo "FAIL: bump stop not detected"; exit 1; }
-    grep -q '"linear_range_kg": 400,' csv.json || { echo "FAIL: linear range"; exit 1; }
+    grep -q '"linear_range_kg": *400\(\.0*\)\?,' csv.json || { echo "FAIL: linear range"; exit 1; }
     echo "ok: static_ballast calibrated from ballast.csv and from samples.csv" ;;
   sim_log)
     # The static test as the demo car's CAN log: the same curve as from its samples.csv.
     "$sim" --scenario static_ballast --seed 4 --out sb >/dev/null || exit 1
     "$tool" --ballast sb/drive.log --masses 0:100:800 --config sb/config.yaml --json \
       >log.json 2>log.err || { echo "FAIL: exit $?"; cat log.err; exit 1; }
-    grep -q '"detected": true' log.json || { echo "FAIL: bump stop not detected"; exit 1; }
-    grep -q '"linear_range_kg": 400,' log.json || { echo "FAIL: linear range"; exit 1; }
+    grep -q '"detected": *true' log.json || { echo "FAIL: bump stop not detected"; exit 1; }
+    grep -q '"linear_range_kg": *400\(\.0*\)\?,' log.json || { echo "FAIL: linear range"; exit 1; }
     c=$(sed -n 's/^{"stiffness_n_per_m": *\([0-9.]*\),.*/\1/p' log.json)
     awk -v c="$c" 'BEGIN { exit !(c > 29700 && c < 30300) }' ||
       { echo "FAIL: stiffness '$c' not within 1 % of the simulated 30000 N/m"; exit 1; }

@@ -31,15 +31,15 @@ TEST(SuspensionSection, WrittenSectionLoadsBackExactly) {
   p.progressive_rate_n_per_m2 = 2.0e6;
   p.linear_range_kg = 414.5372783;
   p.calibrated_range_kg = std::numeric_limits<double>::infinity();
-  const std::string yaml = suspension_section_yaml(p, {"std 5 N/m"}, 17);
+  const std::string yaml = suspension_section_yaml(p, {{"stiffness_n_per_m", "std 5 N/m"}}, 17);
   EXPECT_NE(yaml.find("stiffness_n_per_m: 31234.567891234568  # std 5 N/m"), std::string::npos)
       << yaml;
   EXPECT_NE(yaml.find("calibrated_range_kg: .inf"), std::string::npos) << yaml;
   const ConfigLoad loaded = load_config_text(std::string(kVehicle) + yaml, "written.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error;
   const SuspensionParams& q = loaded.config->pipeline.suspension;
-  for (const SuspensionField& field : kSuspensionFields) {
-    EXPECT_EQ(q.*field.member, p.*field.member) << field.key;
+  for (const Field<SuspensionParams>& field : kSuspensionFields) {
+    EXPECT_TRUE(field_equal(field, q, p)) << field.key;
   }
 }
 

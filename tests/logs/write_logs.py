@@ -3,7 +3,8 @@ and as ASAM MDF4 bus logging (asammdf), the independent writers vmass's readers 
 
     write_logs.py DRIVE.log OUT_DIR [--bad-mdf-record N]
 
-OUT_DIR gets drive.asc, drive.blf, drive.trc and drive.mf4. --bad-mdf-record N makes the MDF4
+OUT_DIR gets drive.asc, drive.blf, drive.trc and drive.mf4, each frame on the channel (bus) of
+its interface: canN is channel (bus) N + 1. --bad-mdf-record N makes the MDF4
 record N (1-based) a classic frame of 9 bytes, which the reader must report and skip. Run with
 TZ=UTC: python-can writes ASC dates in local time, vmass reads them as UTC.
 """
@@ -35,7 +36,9 @@ def write_mdf4(path, messages, bad_record):
     samples = np.zeros(len(messages), dtype=np.dtype(fields))
     for k, m in enumerate(messages):
         row = samples[k]
-        row["CAN_DataFrame.BusChannel"] = 1  # MDF numbers buses from 1
+        # MDF numbers buses from 1: interface canN is bus N + 1 (python-can's writers make it
+        # channel N + 1 likewise)
+        row["CAN_DataFrame.BusChannel"] = 1 + (can.util.channel2int(m.channel) or 0)
         row["CAN_DataFrame.ID"] = m.arbitration_id | (0x80000000 if m.is_extended_id else 0)
         row["CAN_DataFrame.IDE"] = int(m.is_extended_id)
         row["CAN_DataFrame.DLC"] = m.dlc

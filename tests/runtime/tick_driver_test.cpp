@@ -5,9 +5,11 @@
 // can stop a run. Expected tick times and values are worked out by hand.
 #include "vmass/runtime/tick_driver.hpp"
 
+#include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -15,6 +17,7 @@
 #include "test_dbc.hpp"
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/candump_frame_source.hpp"
+#include "vmass/runtime/record_ring.hpp"
 #include "vmass/runtime/samples_csv_source.hpp"
 #include "vmass/runtime/tick_grid.hpp"
 #include "vmass/signals/signal_mapping.hpp"
@@ -163,6 +166,101 @@ TEST(TickDriver, TheClockCanStopTheRun) {
   EXPECT_TRUE(run.stopped);
   EXPECT_EQ(run.ticks, 3);
   EXPECT_EQ(calls, 3);
+}
+
+// The daemon's feed: a reader thread pushes a recording into a small ring (it must wait for room
+// again and again), the ticking thread runs the same driver on it: the same ticks, the same
+// values as the driver reading the recording itself. The ticking thread's clock does not wait,
+// so every tick has to wait for the lagging reader.
+TEST(TickDriver, ARingFedByAnotherThreadTicksAsTheRecordingReadInPlace) {
+  std::string text;
+  for (int i = 0; i < 300; ++i) {
+    char time[32];
+    std::snprintf(time, sizeof time, "%.6f", 100.0 + i * 0.0137);
+    text += line(time, i % 97);
+  }
+  LogInput offline = speed_log(text);
+  const std::vector<Tick> expected = play(*offline.source, 100.0);
+  ASSERT_GT(expected.size(), 300u);
+
+  LogInput reader = speed_log(text);
+  RecordRing ring(4);
+  std::atomic<bool> stop{false};
+  ASSERT_EQ(reader.source->next_record(0), InputSource::Read::kRecord);
+  const TimeUs t0 = reader.source->record_time_us();
+  std::thread push([&] {
+    InputRecord record;
+    do {
+      reader.source->copy_record(&record);
+      while (!ring.records.push(record)) std::this_thread::yield();
+      if (reader.source->next_record(0) != InputSource::Read::kRecord) break;
+      ring.pushed_through_us.store(reader.source->record_time_us() - 1);
+    } while (true);
+    ring.ended.store(true);
+  });
+  RingFeed feed(ring, /*recording=*/true, stop);
+  UnpacedClock clock;
+  TickDriver driver(*reader.source, feed, TickGrid(t0, 100.0));
+  std::vector<Tick> ticks;
+  const TickRun run = driver.run(clock, [&](std::int64_t k, TimeUs t) {
+    ticks.push_back({k, t, reader.source->sample_at(t)});
+  });
+  push.join();
+  ASSERT_EQ(ticks.size(), expected.size());
+  for (std::size_t i = 0; i < ticks.size(); ++i) {
+    EXPECT_EQ(ticks[i].t, expected[i].t);
+    EXPECT_EQ(ticks[i].sample.value(Input::kSpeed), expected[i].sample.value(Input::kSpeed)) << i;
+  }
+  EXPECT_EQ(run.late_records, 0);
+  EXPECT_FALSE(run.stopped);
+}
+
+// A live feed: a tick takes what has arrived and never waits; a record stamped at or before the
+// previous tick arrived too late for it, is applied at the next tick and counted.
+TEST(TickDriver, ALiveFeedTakesWhatCameAndCountsTheLate) {
+  class TwoTicks final : public TickClock {
+   public:
+    explicit TwoTicks(RecordRing& ring) : ring_(ring) {}
+    bool wait_for_tick(std::int64_t k, TimeUs) override {
+      if (k == 1) {
+        InputRecord late;
+        late.time_us = 5'000;  // stamped before tick 0 (10 ms), read only now
+        ring_.records.push(late);
+      }
+      return k < 2;
+    }
+
+   private:
+    RecordRing& ring_;
+  };
+  LogInput in = speed_log(line("0.000000", 36));
+  RecordRing ring(8);
+  std::atomic<bool> stop{false};
+  RingFeed feed(ring, /*recording=*/false, stop);
+  TwoTicks clock(ring);
+  TickDriver driver(*in.source, feed, TickGrid(10'000, 100.0));
+  int calls = 0;
+  const TickRun run = driver.run(clock, [&](std::int64_t, TimeUs) { ++calls; });
+  EXPECT_EQ(calls, 2);  // tick 0 with an empty ring: no wait
+  EXPECT_TRUE(run.stopped);
+  EXPECT_EQ(run.late_records, 1);
+}
+
+// A clock may give missed ticks up (the daemon on a live bus after a stall): the driver runs
+// the tick it names next, on the same grid.
+TEST(TickDriver, TheClockCanGiveTicksUp) {
+  class SkipAfterTheFirst final : public TickClock {
+   public:
+    bool wait_for_tick(std::int64_t, TimeUs) override { return true; }
+    std::int64_t next_tick(std::int64_t k) override { return k == 0 ? 10 : k + 1; }
+  };
+  LogInput in = speed_log(line("0.000000", 36) + line("0.120000", 36));
+  SkipAfterTheFirst clock;
+  TickDriver driver(*in.source, 100.0);
+  std::vector<std::int64_t> ks;
+  const TickRun run = driver.run(clock, [&](std::int64_t k, TimeUs) { ks.push_back(k); });
+  EXPECT_EQ(ks, (std::vector<std::int64_t>{0, 10, 11, 12}));
+  EXPECT_EQ(run.ticks, 13);
 }
 
 }  // namespace

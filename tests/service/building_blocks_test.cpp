@@ -11,8 +11,8 @@
 #include "vmass/config/config.hpp"
 #include "vmass/runtime/input_source.hpp"
 #include "vmass/runtime/seqlock.hpp"
+#include "vmass/runtime/spsc_queue.hpp"
 #include "vmass/service/service_config.hpp"
-#include "vmass/service/spsc_queue.hpp"
 #include "vmass/service/tick_stats.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
@@ -22,6 +22,7 @@ namespace {
 using runtime::InputTimeouts;
 using runtime::InputValues;
 using runtime::SeqLock;
+using runtime::SpscQueue;
 
 TEST(LogHistogram, BinsCoverEveryValueOnceAndInOrder) {
   // bin_upper(bin_of(v)) >= v, and the previous bin ends below v: bins tile the line.

@@ -30,8 +30,8 @@
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/candump_frame_source.hpp"
 #include "vmass/runtime/socketcan_frame_source.hpp"
+#include "vmass/runtime/spsc_queue.hpp"
 #include "vmass/runtime/tick_step.hpp"
-#include "vmass/service/spsc_queue.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
 namespace vmass::service {
@@ -41,6 +41,7 @@ using runtime::CandumpFrameSource;
 using runtime::CanInputSource;
 using runtime::InputRecord;
 using runtime::InputSource;
+using runtime::SpscQueue;
 using runtime::TickStep;
 
 namespace fs = std::filesystem;

@@ -30,7 +30,7 @@ void collect_keys(const YAML::Node& n, const std::string& prefix, std::set<std::
 
 std::string config_text(const SimulationResult& r) {
   std::ostringstream os;
-  write_config_yaml(os, make_config_values(r.vehicle, r.initial_mass, r.tick_rate_hz),
+  write_config_yaml(os, make_config_params(r.vehicle, r.initial_mass, r.tick_rate_hz),
                     {"test header"});
   return os.str();
 }
@@ -90,7 +90,7 @@ TEST(SimConfig, ValuesMatchTheSimulatedCar) {
 
 TEST(SimConfig, CorneringStiffnessIsTheSmallSlipSlopeOfTheSimulatedAxles) {
   const SimulationResult r = test::run(*find_scenario("paper_exp2"), test::ideal());
-  const ConfigValues c = make_config_values(r.vehicle, r.initial_mass, 100.0);
+  const PipelineParams c = make_config_params(r.vehicle, r.initial_mass, 100.0);
   // Wheel loads of the car standing (from the truth: axle loads and the right share)
   const TruthRow& t0 = r.truth.front();
   const double right = 0.5 - t0.cg_y_m / 1.55;
@@ -100,14 +100,14 @@ TEST(SimConfig, CorneringStiffnessIsTheSmallSlipSlopeOfTheSimulatedAxles) {
                      wheel_lateral_force(tp, h, axle_load * (1.0 - right));
     return -f / h;
   };
-  EXPECT_NEAR(c.cornering_stiffness_front_n_per_rad,
+  EXPECT_NEAR(c.vehicle.cornering_stiffness_front_n_per_rad,
               slope(r.vehicle.front_tyre, t0.front_axle_load_n), 1e-3 * 1.5e5);
-  EXPECT_NEAR(c.cornering_stiffness_rear_n_per_rad, slope(r.vehicle.rear_tyre, t0.rear_axle_load_n),
-              1e-3 * 1.5e5);
+  EXPECT_NEAR(c.vehicle.cornering_stiffness_rear_n_per_rad,
+              slope(r.vehicle.rear_tyre, t0.rear_axle_load_n), 1e-3 * 1.5e5);
   // And in the steady turn the simulated axle forces are within a few % of the linear model
   const SimulationResult turn = test::run(*find_scenario("steady_turn"), test::ideal());
   const TruthRow& t = turn.truth.back();
-  const double linear_front = -c.cornering_stiffness_front_n_per_rad * t.slip_front_rad;
+  const double linear_front = -c.vehicle.cornering_stiffness_front_n_per_rad * t.slip_front_rad;
   EXPECT_NEAR(t.lateral_force_front_n, linear_front, 0.06 * std::abs(linear_front));
   EXPECT_LT(std::abs(t.lateral_force_front_n), std::abs(linear_front));  // saturating
 }
@@ -115,14 +115,15 @@ TEST(SimConfig, CorneringStiffnessIsTheSmallSlipSlopeOfTheSimulatedAxles) {
 TEST(SimConfig, StaticInitFromEq3IsWithinAFewPercent) {
   // Given paper_exp1 standing for 5 s at 1659 kg and its config
   const SimulationResult r = test::run(*find_scenario("paper_exp1"));
-  const ConfigValues c = make_config_values(r.vehicle, r.initial_mass, 100.0);
+  const PipelineParams c = make_config_params(r.vehicle, r.initial_mass, 100.0);
   std::vector<double> z;
   for (std::size_t k = 0; k < 400; ++k) z.push_back(r.samples[k].rear_right_deflection_m);
-  const double dz = test::mean(z) - c.empty_deflection_m;
-  ASSERT_LT(test::mean(z), c.progressive_knee_m);
+  const double dz = test::mean(z) - c.suspension.empty_deflection_m;
+  ASSERT_LT(test::mean(z), c.suspension.progressive_knee_m);
   // When eq. (3) is applied with the config's values
-  const double m_init = c.empty_mass_kg + 2.0 * c.wheelbase_m * c.stiffness_n_per_m * dz /
-                                              (c.cg_to_front_axle_m * c.gravity_mps2);
+  const double m_init =
+      c.vehicle.empty_mass_kg + 2.0 * c.vehicle.wheelbase_m * c.suspension.stiffness_n_per_m * dz /
+                                    (c.vehicle.cg_to_front_axle_m * c.vehicle.gravity_mps2);
   // Then it is near, but not exactly, the true 1659 kg (calibration error, payload position)
   EXPECT_NEAR(m_init, 1659.0, 0.03 * 1659.0);
   EXPECT_GT(std::abs(m_init - 1659.0), 2.0);
@@ -132,7 +133,7 @@ TEST(SimConfig, ConfigFileCarriesAHeaderAndFailsCleanlyOnABadDirectory) {
   const SimulationResult r = test::run(*find_scenario("steady_turn"), test::ideal());
   EXPECT_NE(write_config_file(r, "/nonexistent_vmass_dir").find("config.yaml"), std::string::npos);
   std::ostringstream os;
-  write_config_yaml(os, make_config_values(r.vehicle, r.initial_mass, 100.0), {"a", "", "b"});
+  write_config_yaml(os, make_config_params(r.vehicle, r.initial_mass, 100.0), {"a", "", "b"});
   EXPECT_EQ(os.str().rfind("# a\n#\n# b\nvehicle:\n", 0), 0u) << os.str().substr(0, 80);
 }
 

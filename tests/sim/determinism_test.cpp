@@ -22,7 +22,7 @@ Texts texts(const std::string& scenario, std::uint64_t seed, NoiseSet noise) {
   std::ostringstream s, t, c;
   write_samples_csv(s, r.samples);
   write_truth_csv(t, r.truth);
-  write_config_yaml(c, make_config_values(r.vehicle, r.initial_mass, r.tick_rate_hz), {});
+  write_config_yaml(c, make_config_params(r.vehicle, r.initial_mass, r.tick_rate_hz), {});
   return {s.str(), t.str(), c.str()};
 }
 

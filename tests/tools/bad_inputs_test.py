@@ -174,6 +174,17 @@ def cases(tmp):
     out.append(("replay.asc_channel_256", [replay, "--config", can_config, "--log", write(
         "c.asc", "date Wed Jan 10 10:55:25.123 am 2024\nbase hex  timestamps absolute\n"
         "   0.015991 256  123  Rx   d 1 01\n")]))
+    # --interface: a name the log does not have (the interfaces it has, with their frames), and
+    # a name no interface can have.
+    two_interfaces = write("i.log", "(1.000000) can0 123#00\n(1.001000) can1 124#00\n"
+                                    "(1.002000) can1 125#00\n")
+    out.append(("replay.interface_not_in_log", [replay, "--config", can_config, "--log",
+                                                two_interfaces, "--interface", "can2"]))
+    out.append(("replay.interface_invalid_name", [replay, "--config", can_config, "--log",
+                                                  two_interfaces, "--interface", "can 1"]))
+    out.append(("vmassd.interface_not_in_log", [vmassd, "--config", can_config, "--replay",
+                                                two_interfaces, "--interface", "vcan0", "--speed",
+                                                "max", "--no-restore", "--lcm-url", "memq://"]))
     out.append(("vmassd.lcm_url_typo", [vmassd, "--config", config, "--samples", samples,
                                          "--speed", "max", "--no-restore", "--lcm-url",
                                          "udpm://239.255.76.67:7667?tll=0"]))

@@ -26,7 +26,6 @@
 #include <fstream>
 #include <iostream>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -38,10 +37,14 @@
 #include "proc_stats.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
+#include "vmass/json/json.hpp"
 
 namespace {
 
 using namespace vmass;
+
+/// A measured figure, at the 6 significant digits a stream prints by default.
+json::Json figure(double v) { return json::significant(v, 6); }
 
 struct Options {
   std::string log, dbc, daemon_log = "/tmp/vmass-bench-daemon.log";
@@ -103,24 +106,25 @@ bool stop_daemon(pid_t pid) {
 
 /// The numbers of the daemon's final log line ("stopped: ... N ticks[, M overruns]; ... jitter
 /// p50/p99/max a/b/c us"), as JSON members (overruns null before a mass is known: the line
-/// leaves them out then); "" when absent.
-std::string final_line_json(const std::string& log) {
+/// leaves them out then); null when absent.
+json::Json final_line_json(const std::string& log) {
   static const std::regex ticks(R"((\d+) ticks(, (\d+) overruns)?)");
   static const std::regex jitter(R"(jitter p50/p99/max (\d+)/(\d+)/(\d+) us)");
   std::smatch t, j;
   const std::string line = bench::stopped_line(log);
-  if (line.empty()) return "";
-  if (!std::regex_search(line, t, ticks) || !std::regex_search(line, j, jitter)) return "";
-  return "\"ticks\": " + t[1].str() +
-         ", \"overruns\": " + (t[3].matched ? t[3].str() : std::string("null")) +
-         ", \"jitter_p50_us\": " + j[1].str() + ", \"jitter_p99_us\": " + j[2].str() +
-         ", \"jitter_max_us\": " + j[3].str();
+  if (line.empty()) return nullptr;
+  if (!std::regex_search(line, t, ticks) || !std::regex_search(line, j, jitter)) return nullptr;
+  return {{"ticks", std::stoull(t[1].str())},
+          {"overruns", t[3].matched ? json::Json(std::stoull(t[3].str())) : json::Json()},
+          {"jitter_p50_us", std::stoull(j[1].str())},
+          {"jitter_p99_us", std::stoull(j[2].str())},
+          {"jitter_max_us", std::stoull(j[3].str())}};
 }
 
-std::string threads_json(const std::map<std::string, bench::ThreadCpu>& before,
-                         const std::map<std::string, bench::ThreadCpu>& after, double window_s,
-                         double* total_percent) {
-  std::ostringstream out;
+json::Json threads_json(const std::map<std::string, bench::ThreadCpu>& before,
+                        const std::map<std::string, bench::ThreadCpu>& after, double window_s,
+                        double* total_percent) {
+  json::Json out = json::Json::object();
   *total_percent = 0.0;
   for (const auto& [name, cpu] : after) {
     const auto b = before.find(name);
@@ -129,10 +133,9 @@ std::string threads_json(const std::map<std::string, bench::ThreadCpu>& before,
     const double percent = 100.0 * static_cast<double>(cpu.run_ns - from.run_ns) / 1e9 / window_s;
     const double wakeups = static_cast<double>(cpu.slices - from.slices) / window_s;
     *total_percent += percent;
-    out << (out.tellp() > 0 ? ", " : "") << "\"" << name << "\": {\"cpu_percent\": " << percent
-        << ", \"scheduled_per_s\": " << wakeups << "}";
+    out[name] = {{"cpu_percent", figure(percent)}, {"scheduled_per_s", figure(wakeups)}};
   }
-  return "{" + out.str() + "}";
+  return out;
 }
 
 int parse(int argc, char** argv, Options* o) {
@@ -192,25 +195,30 @@ int main(int argc, char** argv) {
   const bool was_alive = alive(pid);
   const bool stopped = was_alive && stop_daemon(pid);
   close(sv[0]);
-  const std::string final_line = final_line_json(bench::read_text(o.daemon_log));
-  if (!stopped || final_line.empty()) {
+  const json::Json final_line = final_line_json(bench::read_text(o.daemon_log));
+  if (!stopped || final_line.is_null()) {
     std::cerr << "vmass-bench-daemon: the daemon " << (was_alive ? "did not stop" : "died")
               << "; its log (" << o.daemon_log << "):\n"
               << bench::read_text(o.daemon_log);
     return 1;
   }
   double cpu_percent = 0.0;
-  const std::string threads = threads_json(before, after, window_s, &cpu_percent);
+  const json::Json threads = threads_json(before, after, window_s, &cpu_percent);
   const bench::BusFeedStats& s = feed->stats();
   const double sent = static_cast<double>(s.log_frames + s.filler_frames);
   const double run_s = std::max(1e-3, s.seconds);
-  std::cout << "{\"window_s\": " << window_s << ", \"cpu_percent\": " << cpu_percent
-            << ", \"threads\": " << threads << ", \"rss_start_kb\": " << memory_at_start.rss_kb
-            << ", \"rss_kb\": " << memory.rss_kb << ", \"hwm_kb\": " << memory.hwm_kb
-            << ", \"frames_per_s\": " << sent / run_s
-            << ", \"log_frames_per_s\": " << static_cast<double>(s.log_frames) / run_s
-            << ", \"filler_frames_per_s\": " << feed->filler_frames_per_s()
-            << ", \"frames_dropped\": " << s.dropped << ", \"load_average\": " << load << ", "
-            << final_line << "}\n";
+  json::Json report = {{"window_s", figure(window_s)},
+                       {"cpu_percent", figure(cpu_percent)},
+                       {"threads", threads},
+                       {"rss_start_kb", memory_at_start.rss_kb},
+                       {"rss_kb", memory.rss_kb},
+                       {"hwm_kb", memory.hwm_kb},
+                       {"frames_per_s", figure(sent / run_s)},
+                       {"log_frames_per_s", figure(static_cast<double>(s.log_frames) / run_s)},
+                       {"filler_frames_per_s", figure(feed->filler_frames_per_s())},
+                       {"frames_dropped", s.dropped},
+                       {"load_average", figure(load)}};
+  report.update(final_line);
+  std::cout << json::dump(report) << "\n";
   return 0;
 }

@@ -26,7 +26,6 @@
 #include <iostream>
 #include <memory>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -39,10 +38,14 @@
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
+#include "vmass/json/json.hpp"
 
 namespace {
 
 using namespace vmass;
+
+/// A measured figure, at the 6 significant digits a stream prints by default.
+json::Json figure(double v) { return json::significant(v, 6); }
 
 struct Options {
   std::string log, dbc, daemon_log = "/tmp/vmass-soak-daemon.log";
@@ -186,19 +189,19 @@ FeedResult feed(SoakStream& stream, const Options& o, int fd, pid_t pid) {
 }
 
 /// "name": N members for every "N words" counter of the daemon's final "stopped:" line;
-/// "" when the line is absent.
-std::string final_counters_json(const std::string& log) {
+/// null when the line is absent.
+json::Json final_counters_json(const std::string& log) {
   const std::string line = bench::stopped_line(log);
-  if (line.empty()) return "";
+  if (line.empty()) return nullptr;
   static const std::regex counter(
       R"((\d+) (ticks|overruns|estimates published|publish failures|queue drops|input records late|reordered|too late|jumps|received|decoded|unknown|malformed|dropped|bus errors|reopens))");
-  std::ostringstream out;
+  json::Json out = json::Json::object();
   for (std::sregex_iterator it(line.begin(), line.end(), counter), end; it != end; ++it) {
     std::string name = (*it)[2].str();
     for (char& c : name) c = c == ' ' ? '_' : c;
-    out << ", \"" << name << "\": " << (*it)[1].str();
+    out[name] = std::stoull((*it)[1].str());
   }
-  return out.str();
+  return out;
 }
 
 int parse(int argc, char** argv, Options* o) {
@@ -221,17 +224,22 @@ int parse(int argc, char** argv, Options* o) {
 }
 
 void print_report(const Options& o, const SoakStream& stream, const FeedResult& fed,
-                  const std::string& counters) {
+                  const json::Json& counters) {
   const std::uint64_t frames = stream.drive_frames() + stream.filler_frames();
-  std::cout << "{\"simulated_hours\": " << static_cast<double>(stream.simulated_us()) / 3600e6
-            << ", \"frames_written\": " << frames << ", \"drive_frames\": " << stream.drive_frames()
-            << ", \"filler_frames\": " << stream.filler_frames() << ", \"wall_s\": " << fed.wall_s
-            << ", \"frames_per_s\": " << static_cast<double>(frames) / std::max(1e-3, fed.wall_s)
-            << ", \"rss_start_kb\": " << fed.memory.start_kb
-            << ", \"rss_end_kb\": " << fed.memory.end_kb
-            << ", \"rss_min_kb\": " << fed.memory.min_kb
-            << ", \"rss_max_kb\": " << fed.memory.max_kb << ", \"hours_requested\": " << o.hours
-            << counters << "}\n";
+  json::Json report = {
+      {"simulated_hours", figure(static_cast<double>(stream.simulated_us()) / 3600e6)},
+      {"frames_written", frames},
+      {"drive_frames", stream.drive_frames()},
+      {"filler_frames", stream.filler_frames()},
+      {"wall_s", figure(fed.wall_s)},
+      {"frames_per_s", figure(static_cast<double>(frames) / std::max(1e-3, fed.wall_s))},
+      {"rss_start_kb", fed.memory.start_kb},
+      {"rss_end_kb", fed.memory.end_kb},
+      {"rss_min_kb", fed.memory.min_kb},
+      {"rss_max_kb", fed.memory.max_kb},
+      {"hours_requested", figure(o.hours)}};
+  report.update(counters);
+  std::cout << json::dump(report) << "\n";
 }
 
 }  // namespace
@@ -255,8 +263,8 @@ int main(int argc, char** argv) {
   int status = 0;
   waitpid(pid, &status, 0);
   const std::string log = bench::read_text(o.daemon_log);
-  const std::string counters = final_counters_json(log);
-  if (!fed.complete || counters.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  const json::Json counters = final_counters_json(log);
+  if (!fed.complete || counters.is_null() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::cerr << "vmass-soak: the daemon "
               << (fed.complete ? "did not stop cleanly" : "stopped reading the stream")
               << "; its log (" << o.daemon_log << "), last part:\n"

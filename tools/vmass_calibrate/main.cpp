@@ -9,7 +9,8 @@
 // sample or step), a time series (time_s, rear_right_deflection_<unit>[, speed_mps], e.g. a
 // vmass samples.csv), or a CAN log of the test (candump -l, Vector ASC or BLF, PEAK TRC, ASAM
 // MDF4: recognised by its content, runtime/log_frame_source.hpp), decoded
-// with the --config file's `can:` section and ticked at 100 Hz in log time by the runtime's tick
+// with the --config file's `can:` section (one interface of it with --interface) and ticked at
+// 100 Hz in log time by the runtime's tick
 // driver (vmass/runtime/tick_driver.hpp, as in vmass-replay); every tick with a new, valid
 // rear_right_deflection frame
 // gives one point (time of that frame, deflection, speed when valid); held values are not
@@ -32,6 +33,7 @@
 #include <CLI/CLI.hpp>
 
 #include "exit_code.hpp"
+#include "interface_option.hpp"
 #include "vmass/calibrate/ballast_csv.hpp"
 #include "vmass/calibrate/calibration_report.hpp"
 #include "vmass/calibrate/plateau_detector.hpp"
@@ -39,6 +41,7 @@
 #include "vmass/can/log_format.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/io/regular_file.hpp"
+#include "vmass/io/sibling_program.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_table.hpp"
@@ -47,29 +50,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using vmass::io::shell_quote;
+using vmass::io::sibling_program;
 using vmass::tools::kExitFailure;
 using vmass::tools::kExitUsage;
 
 int fail(const std::string& message, int code = kExitUsage) {
   std::cerr << "vmass-calibrate: error: " << message << "\n";
   return code;
-}
-
-// The plotting script ships beside our executables (build/bin or the install's bin).
-std::string sibling_program(const std::string& name) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path candidate = self.parent_path() / name;
-    if (fs::exists(candidate)) return candidate.string();
-  }
-  return name;  // rely on PATH
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 // True when the file is a CAN log (candump -l, Vector ASC or BLF, PEAK TRC, ASAM MDF4, ...: the
@@ -85,13 +73,16 @@ bool is_can_log(const std::string& path) {
   return vmass::can::detect_log_format(head) != vmass::can::LogFormat::kUnknown;
 }
 
-// The deflection series of a CAN log (see the header comment). "" or a message.
-std::string read_log_series(const std::string& path, const vmass::Config& config,
+// The deflection series of a CAN log (see the header comment), of its interface `interface`
+// alone unless "". "" or a message.
+std::string read_log_series(const std::string& path, const std::string& interface,
+                            const vmass::Config& config,
                             std::vector<vmass::calibrate::DeflectionPoint>* series,
                             std::string* note) {
   namespace rt = vmass::runtime;
   rt::LogRecording recording = rt::open_log_recording(path, config);
   if (!recording.source) return recording.error;
+  if (!interface.empty()) recording.log->select_interface(interface);
   const rt::CanInputSource& source = *recording.source;
   if (!source.table().input_state(vmass::Input::kRearRightDeflection).mapped) {
     return config.file + ": can.inputs.rear_right_deflection: required to calibrate from a log";
@@ -122,6 +113,8 @@ std::string read_log_series(const std::string& path, const vmass::Config& config
     series->push_back(p);
   });
   if (const std::string failed = source.read_error(); !failed.empty()) return failed;
+  // No frame on --interface (or not one line could be read).
+  if (!interface.empty() && !log.no_frames_reason().empty()) return log.no_frames_reason();
   const auto& c = source.table().counters();
   char buf[200];
   std::snprintf(buf, sizeof buf,
@@ -133,6 +126,10 @@ std::string read_log_series(const std::string& path, const vmass::Config& config
                 static_cast<unsigned long long>(c.malformed), static_cast<long long>(run.ticks),
                 series->size());
   *note = buf;
+  if (const rt::InterfaceSelection* selection = log.interface_selection()) {
+    *note += "; interface " + selection->name() + ", " + std::to_string(selection->skipped()) +
+             " frames of other interfaces skipped";
+  }
   if (series->empty()) {
     return path + ": no valid rear_right_deflection in the log (" + std::string(buf) + ")";
   }
@@ -148,6 +145,7 @@ bool write_file(const std::string& path, const std::string& text) {
 
 struct Options {
   std::string ballast_path, config_path, masses_text, write_config_path, plot_path;
+  std::string interface;  ///< --interface: one interface of a CAN log
   bool json = false;
   std::optional<double> wheelbase_m, cg_to_front_axle_m, gravity_mps2, empty_mass_kg;
   vmass::calibrate::SuspensionFitOptions fit;
@@ -164,6 +162,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
                  "Vector ASC/BLF, PEAK TRC, ASAM MDF4; with --config: its can: section)")
       ->required();
   app.add_option("--config", o->config_path, "vmass YAML config: vehicle geometry and empty mass");
+  vmass::tools::add_interface_option(app, &o->interface);
   app.add_option("--masses", o->masses_text,
                  "ballast added at each plateau of a time series, kg, in time order: "
                  "'0,100,200' or FIRST:STEP:LAST");
@@ -225,7 +224,9 @@ std::string read_ballast(const Options& o, const VehicleSetup& setup,
                          vmass::calibrate::BallastCsvRead* read, std::string* log_note) {
   if (!is_can_log(o.ballast_path)) {
     *read = vmass::calibrate::read_ballast_csv(o.ballast_path);
-    return read->ok() ? "" : read->error;
+    if (!read->ok()) return read->error;
+    if (!o.interface.empty()) return o.ballast_path + " is a CSV: --interface is for a CAN log";
+    return "";
   }
   if (!setup.config) {
     return o.ballast_path +
@@ -234,7 +235,7 @@ std::string read_ballast(const Options& o, const VehicleSetup& setup,
   }
   read->csv = vmass::calibrate::BallastCsv{};
   read->csv->kind = vmass::calibrate::BallastCsvKind::kSeries;
-  return read_log_series(o.ballast_path, *setup.config, &read->csv->series, log_note);
+  return read_log_series(o.ballast_path, o.interface, *setup.config, &read->csv->series, log_note);
 }
 
 /// The ballast steps: a steps CSV's groups, or a time series' plateaus paired with --masses.

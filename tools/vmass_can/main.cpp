@@ -2,9 +2,10 @@
 //
 //   vmass-can check  --dbc FILE [--strict]            validate a DBC, list messages and signals
 //   vmass-can decode --dbc FILE [LOG] [--json]        decode a CAN log (stdin without LOG): candump
-//                                                     -l or screen output, Vector ASC or BLF,
+//                    [--interface NAME]               -l or screen output, Vector ASC or BLF,
 //                                                     PEAK TRC, ASAM MDF4
-//                                                     (runtime/log_frame_source)
+//                                                     (runtime/log_frame_source); one interface
+//                                                     of it with --interface
 //   vmass-can dump   --can IFACE [--count N] [--idle-timeout S] [--dbc FILE]
 //                                                     print frames from SocketCAN as candump -l
 //
@@ -12,7 +13,8 @@
 // got fewer than --count frames before the idle timeout, a read error in the log); 2 usage or
 // input error (a DBC with errors, or with deviations under --strict: check reports every one,
 // decode decodes with what loaded and still exits 2; a log that cannot be opened or is no CAN
-// log); decode exits 1 when the BLF/MDF4 converter failed on the way.
+// log, or has no frame on --interface); decode exits 1 when the BLF/MDF4 converter failed on the
+// way.
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
@@ -24,10 +26,12 @@
 #include <vector>
 
 #include "exit_code.hpp"
+#include "interface_option.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
 #include "vmass/can/socketcan.hpp"
+#include "vmass/json/json.hpp"
 #include "vmass/runtime/log_frame_source.hpp"
 #include "vmass/runtime/text_log_frame_source.hpp"
 
@@ -40,24 +44,6 @@ void print_diagnostics(const DbcParseResult& r) {
   for (const DbcDiagnostic& d : r.diagnostics) std::cerr << d.to_string() << "\n";
 }
 
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (u < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", u);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 /// Shortest text that reads back as the same double; JSON null for NaN and infinities.
 void append_number(std::string& out, double v) {
   if (!std::isfinite(v)) {
@@ -67,17 +53,6 @@ void append_number(std::string& out, double v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, r.ptr);
-}
-
-void append_time(std::string& out, std::int64_t time_us) {
-  char buf[40];
-  // Before 1970 the time is negative: the sign, then the magnitude's seconds and fraction.
-  const std::uint64_t magnitude =
-      time_us < 0 ? 0 - static_cast<std::uint64_t>(time_us) : static_cast<std::uint64_t>(time_us);
-  std::snprintf(buf, sizeof buf, "%s%llu.%06llu", time_us < 0 ? "-" : "",
-                static_cast<unsigned long long>(magnitude / 1000000),
-                static_cast<unsigned long long>(magnitude % 1000000));
-  out += buf;
 }
 
 /// The DBC compiled for decoding; *had_errors when it loaded only in part (what loaded is still
@@ -151,26 +126,21 @@ int run_check(const std::string& dbc, bool strict) {
   return r.ok() && compiles ? vmass::tools::kExitOk : vmass::tools::kExitUsage;
 }
 
-/// One decoded frame as a JSON object (a line).
+/// One decoded frame as a JSON object (a line). The time is the double nearest the log's
+/// microseconds in seconds (the quotient of two exact doubles is rounded once).
 void append_json(std::string& out, const Decoder& decoder, const Message& msg,
                  const CandumpRecord& rec) {
-  out += "{\"time_s\": ";
-  append_time(out, rec.frame.time_us);
-  out += ", \"id\": ";
-  out += std::to_string(rec.frame.id);
-  out += ", \"message\": \"";
-  out += json_escape(msg.name);
-  out += "\", \"signals\": {";
-  bool first = true;
+  namespace json = vmass::json;
+  json::Json j;
+  j["time_s"] = static_cast<double>(rec.frame.time_us) / 1e6;
+  j["id"] = rec.frame.id;
+  j["message"] = msg.name;
+  json::Json& signals = j["signals"] = json::Json::object();
   decoder.decode(rec.frame, [&](int i, double v) {
-    if (!first) out += ", ";
-    first = false;
-    out += '"';
-    out += json_escape(msg.signals[static_cast<std::size_t>(i)].name);
-    out += "\": ";
-    append_number(out, v);
+    signals[msg.signals[static_cast<std::size_t>(i)].name] = json::number(v);
   });
-  out += "}}\n";
+  out += json::dump(j);
+  out += '\n';
 }
 
 /// One decoded frame as cantools decode prints it: the candump line, then the signals (value
@@ -201,8 +171,10 @@ void append_text(std::string& out, const Decoder& decoder, const Message& msg,
   out += ")\n";
 }
 
-/// The log to decode: a file of any format vmass reads, or standard input (text formats).
-std::unique_ptr<rt::LogFrameSource> open_decode_input(const std::string& log) {
+/// The log to decode: a file of any format vmass reads, or standard input (text formats); its
+/// interface `interface` alone unless "".
+std::unique_ptr<rt::LogFrameSource> open_decode_input(const std::string& log,
+                                                      const std::string& interface) {
   std::string error;
   std::unique_ptr<rt::LogFrameSource> source;
   if (log.empty() || log == "-") {
@@ -212,6 +184,7 @@ std::unique_ptr<rt::LogFrameSource> open_decode_input(const std::string& log) {
     source = rt::open_log_frame_source(log, &error, false);
   }
   if (!source) std::cerr << "vmass-can decode: " << error << "\n";
+  if (source && !interface.empty()) source->select_interface(interface);
   return source;
 }
 
@@ -252,11 +225,19 @@ DecodeStats decode_frames(rt::LogFrameSource& source, const Decoder& decoder, bo
   return stats;
 }
 
-int run_decode(const std::string& dbc, const std::string& log, bool json, bool strict) {
+/// ", N frames of other interfaces skipped" with --interface, else "".
+std::string skipped_report(const rt::LogFrameSource& source) {
+  const rt::InterfaceSelection* selection = source.interface_selection();
+  if (selection == nullptr) return "";
+  return ", " + std::to_string(selection->skipped()) + " frames of other interfaces skipped";
+}
+
+int run_decode(const std::string& dbc, const std::string& log, const std::string& interface,
+               bool json, bool strict) {
   bool dbc_errors = false;
   auto decoder = load_decoder(dbc, strict, json, &dbc_errors);
   if (!decoder) return vmass::tools::kExitUsage;
-  std::unique_ptr<rt::LogFrameSource> source = open_decode_input(log);
+  std::unique_ptr<rt::LogFrameSource> source = open_decode_input(log, interface);
   if (!source) return vmass::tools::kExitUsage;
   source->on_error([](const CandumpError& e) { std::cerr << e.message << "\n"; });
   const DecodeStats stats = decode_frames(*source, *decoder, json);
@@ -265,10 +246,11 @@ int run_decode(const std::string& dbc, const std::string& log, bool json, bool s
             << " frames, " << stats.decoded << " decoded, " << stats.unknown_id << " unknown id, "
             << stats.too_short << " too short, " << stats.remote << " remote, "
             << stats.error_frames << " error frames, " << cs.corrupt << " corrupt "
-            << source->unit() << "s\n";
+            << source->unit() << "s" << skipped_report(*source) << "\n";
   if (dbc_errors) return vmass::tools::kExitUsage;
   if (source->problem().empty()) {
-    const std::string no_frames = source->no_frames_reason();  // not one line could be read
+    // Not one line could be read, or no frame was on --interface.
+    const std::string no_frames = source->no_frames_reason();
     if (no_frames.empty()) return vmass::tools::kExitOk;
     std::cerr << "vmass-can decode: " << no_frames << "\n";
     return vmass::tools::kExitUsage;
@@ -334,7 +316,7 @@ int main(int argc, char** argv) {
   CLI::App app{"vmass-can: DBC checking, candump log decoding and SocketCAN dumping"};
   app.require_subcommand(1);
 
-  std::string dbc, log, iface;
+  std::string dbc, log, iface, decode_interface;
   bool strict = false, json = false;
   long count = 0;
   double idle_timeout_s = 0.0;
@@ -350,6 +332,7 @@ int main(int argc, char** argv) {
                      "(default: standard input, a text format)");
   decode->add_flag("--json", json, "one JSON object per decoded frame");
   decode->add_flag("--strict", strict, "refuse a DBC with deviations");
+  vmass::tools::add_interface_option(*decode, &decode_interface);
 
   CLI::App* dump = app.add_subcommand("dump", "print frames from a SocketCAN interface");
   dump->add_option("--can", iface, "interface, e.g. can0")->required();
@@ -359,6 +342,6 @@ int main(int argc, char** argv) {
 
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   if (check->parsed()) return run_check(dbc, strict);
-  if (decode->parsed()) return run_decode(dbc, log, json, strict);
+  if (decode->parsed()) return run_decode(dbc, log, decode_interface, json, strict);
   return run_dump(iface, count, idle_timeout_s, dbc);
 }

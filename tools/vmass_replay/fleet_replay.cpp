@@ -73,13 +73,15 @@ void remove_output(const std::string& path) {
   if (!path.empty() && fs::is_regular_file(fs::symlink_status(path, ec))) fs::remove(path, ec);
 }
 
-FleetLogResult replay_one(const std::string& path, const signals::CanInputs& can,
-                          const PipelineParams& params, const std::string& csv_path) {
+FleetLogResult replay_one(const std::string& path, const FleetPlan& plan,
+                          const signals::CanInputs& can, const PipelineParams& params) {
   FleetLogResult r;
   r.path = path;
+  const std::string csv_path = csv_path_for(path, plan.out_dir);
   // Any CAN log vmass reads, its format found from its content, as --log reads it.
   std::unique_ptr<runtime::LogFrameSource> frames = runtime::open_log_frame_source(path, &r.error);
   if (!frames) return r;
+  if (!plan.interface.empty()) frames->select_interface(plan.interface);
   const runtime::LogFrameSource& log = *frames;
   runtime::CanInputSource source(std::move(frames), can.decoder, can.mapping);
   std::unique_ptr<EstimateCsvWriter> writer;
@@ -91,11 +93,16 @@ FleetLogResult replay_one(const std::string& path, const signals::CanInputs& can
     }
   }
   runtime::TickStep step(params);
-  ReplaySummary summary(std::nullopt);
+  scoring::ReplaySummary summary(std::nullopt);
   runtime::TickRun run;
   play_recording(source, step, std::nullopt, &summary, writer.get(), &run);
-  std::string failed = source.read_error();             // the log could not be read to its end
-  if (failed.empty()) failed = log.no_frames_reason();  // not one line could be read
+  if (const runtime::InterfaceSelection* selection = log.interface_selection()) {
+    r.other_interface_frames = selection->skipped();  // a failed row's too
+  }
+  // The log could not be read to its end; not one line could be read, or no frame was on the
+  // interface.
+  std::string failed = source.read_error();
+  if (failed.empty()) failed = log.no_frames_reason();
   if (!failed.empty()) {
     if (writer) writer->close();
     remove_output(csv_path);
@@ -103,7 +110,7 @@ FleetLogResult replay_one(const std::string& path, const signals::CanInputs& can
     return r;
   }
   // The end of the log: the open Bayes batch enters the final estimate, as with --log.
-  if (step.pipeline().flush()) summary.finish(step.pipeline().estimate());
+  if (step.flush()) summary.finish(step.pipeline().estimate());
   if (writer && !writer->close()) {
     r.error = csv_path + ": write failed (the file is incomplete)";
     return r;
@@ -155,7 +162,7 @@ std::vector<FleetLogResult> replay_logs(const FleetPlan& plan, const signals::Ca
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i = next.fetch_add(1); i < plan.logs.size(); i = next.fetch_add(1)) {
-      results[i] = replay_one(plan.logs[i], can, params, csv_path_for(plan.logs[i], plan.out_dir));
+      results[i] = replay_one(plan.logs[i], plan, can, params);
     }
   };
   const std::size_t jobs =

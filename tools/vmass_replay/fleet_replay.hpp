@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "replay_summary.hpp"
 #include "vmass/core/pipeline.hpp"
+#include "vmass/scoring/replay_summary.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
 namespace vmass {
@@ -22,14 +22,19 @@ struct FleetLogResult {
   std::string error;  ///< "" when replayed (and its CSV written); else why not
   std::uint64_t frames = 0;
   std::uint64_t corrupt_lines = 0;
+  std::uint64_t other_interface_frames = 0;  ///< skipped: not FleetPlan::interface's (a
+                                             ///< failed row's too)
   std::string estimator;
-  ReplaySummary::Result summary;
+  scoring::ReplaySummary::Result summary;
 };
 
 struct FleetPlan {
   std::vector<std::string> logs;
   int jobs = 1;
   std::string out_dir;  ///< "" or a folder for each log's estimate CSV, <stem>.csv
+  /// "" or the one interface of each log to replay (runtime/interface_selection.hpp); a log
+  /// without a frame on it is a failed row
+  std::string interface;
 };
 
 /// The logs `paths` names (a file as it is, a folder as its *.log files sorted by name), then

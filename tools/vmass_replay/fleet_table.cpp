@@ -1,19 +1,19 @@
 #include "fleet_table.hpp"
 
 #include <array>
-#include <cstdio>
 #include <utility>
 #include <vector>
 
 #include "vmass/csv/fixed_decimal.hpp"
+#include "vmass/json/json.hpp"
 
 namespace vmass {
 namespace {
 
-/// A cell: its text and whether JSON writes it as a string (else a number, or null when empty).
+/// A cell: its CSV text and its JSON value (null when empty; a number reads back as the text).
 struct Cell {
   std::string text;
-  bool is_text = false;
+  json::Json value;
 };
 
 std::string fixed(double v, int decimals) {
@@ -22,10 +22,11 @@ std::string fixed(double v, int decimals) {
 }
 
 Cell number(double v, int decimals, bool present = true) {
-  return {present ? fixed(v, decimals) : std::string(), false};
+  if (!present) return {};
+  return {fixed(v, decimals), json::fixed(v, decimals)};
 }
-Cell count(long v) { return {std::to_string(v), false}; }
-Cell text(std::string_view v) { return {std::string(v), true}; }
+Cell count(long v) { return {std::to_string(v), v}; }
+Cell text(std::string_view v) { return {std::string(v), std::string(v)}; }
 
 constexpr std::array<const char*, 21> kColumns = {"log",
                                                   "frames",
@@ -52,9 +53,9 @@ constexpr std::array<const char*, 21> kColumns = {"log",
 std::vector<Cell> cells(const FleetLogResult& r) {
   std::vector<Cell> c(kColumns.size());
   c.front() = text(r.path);
-  c.back() = {r.error, !r.error.empty()};                 // JSON null when there is none
+  c.back() = r.error.empty() ? Cell() : text(r.error);    // JSON null when there is none
   if (!r.error.empty() && r.estimator.empty()) return c;  // not replayed: path and error only
-  const ReplaySummary::Result& s = r.summary;
+  const scoring::ReplaySummary::Result& s = r.summary;
   const Estimate& e = s.final_estimate;
   const bool mass = s.has_estimate;
   c[1] = count(static_cast<long>(r.frames));
@@ -83,29 +84,6 @@ std::string csv_cell(const Cell& cell) {
   return out + "\"";
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    const auto u = static_cast<unsigned char>(ch);
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (u < 0x20) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04x", u);
-      out += esc;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-std::string json_value(const Cell& cell) {
-  if (cell.is_text) return json_string(cell.text);
-  return cell.text.empty() ? std::string("null") : cell.text;
-}
-
 }  // namespace
 
 std::string fleet_csv_header() {
@@ -122,12 +100,10 @@ std::string fleet_csv_row(const FleetLogResult& r) {
 }
 
 std::string fleet_json_line(const FleetLogResult& r) {
-  std::string out = "{";
+  json::Json j;
   const std::vector<Cell> c = cells(r);
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    out += (i == 0 ? "\"" : ", \"") + std::string(kColumns[i]) + "\": " + json_value(c[i]);
-  }
-  return out + "}\n";
+  for (std::size_t i = 0; i < c.size(); ++i) j[kColumns[i]] = c[i].value;
+  return json::dump(j) + "\n";
 }
 
 }  // namespace vmass

@@ -6,8 +6,9 @@
 // The estimate is the final one (the open Bayes batch flushed), as --log's summary reports it.
 // A log without an estimate has empty cells (JSON null) for the masses; a log that could not
 // be replayed has only its path and the error. Numbers at the estimate CSV's precisions, written
-// with std::to_chars (vmass/csv/fixed_decimal.hpp); a CSV cell holding a comma or a quote is
-// quoted (RFC 4180). Thread-safe (pure functions).
+// with std::to_chars (vmass/csv/fixed_decimal.hpp; the JSON's read back as the same values,
+// vmass/json/json.hpp); a CSV cell holding a comma or a quote is quoted (RFC 4180).
+// Thread-safe (pure functions).
 #pragma once
 
 #include <string>

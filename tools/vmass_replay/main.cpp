@@ -1,10 +1,10 @@
 // vmass-replay: drive the estimation pipeline offline over recorded samples or a CAN log, at
 // the configured tick rate, and report how it did; or over many logs at once.
 //
-//   vmass-replay --config FILE (--samples CSV | --log LOG) [--truth CSV]
+//   vmass-replay --config FILE (--samples CSV | --log LOG [--interface NAME]) [--truth CSV]
 //                [--estimator rls|bayes] [--out CSV] [--plot PNG] [--json]
-//   vmass-replay --config FILE (--logs PATH... | --log-list FILE) [--jobs N] [--out-dir DIR]
-//                [--estimator rls|bayes] [--json]
+//   vmass-replay --config FILE (--logs PATH... | --log-list FILE) [--interface NAME] [--jobs N]
+//                [--out-dir DIR] [--estimator rls|bayes] [--json]
 //
 // The recording ticks through vmass_runtime exactly as in vmassd (runtime::TickDriver on the
 // tick grid T_k = T_0 + k / tick_rate_hz in log time, T_0 the first record's time; tick k sees
@@ -12,6 +12,9 @@
 // -l, Vector ASC or BLF, PEAK TRC, ASAM MDF4: runtime::LogFrameSource, the format found from the
 // content) with the config's `can:` section into a SignalTable, --samples holds samples.csv rows
 // (an input older than 5 ticks is stale). Corrupt log lines are reported and counted, never fatal.
+// --interface reads one interface of a multi-interface log (runtime/interface_selection.hpp): the
+// others' frames are skipped and counted; a log without a frame on it is bad input (2; with many
+// logs, a failed row).
 // --truth is read only when given, and refused (exit 2) when its time base is not the input's
 // (Truth::check_time_base). At the end the open Bayes batch is flushed into the final estimate
 // the summary prints. Records out of time order are put back in order within 50 ms, clock
@@ -40,16 +43,22 @@
 #include "exit_code.hpp"
 #include "fleet_replay.hpp"
 #include "fleet_table.hpp"
+#include "interface_option.hpp"
 #include "replay_run.hpp"
-#include "replay_summary.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/csv/estimate_csv.hpp"
+#include "vmass/io/sibling_program.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/scoring/replay_summary_text.hpp"
+#include "vmass/scoring/truth_csv.hpp"
+#include "vmass/service/service_config.hpp"
 
 namespace fs = std::filesystem;
 namespace rt = vmass::runtime;
+using vmass::io::shell_quote;
+using vmass::io::sibling_program;
 using vmass::tools::kExitFailure;
 using vmass::tools::kExitOk;
 using vmass::tools::kExitUsage;
@@ -60,7 +69,8 @@ struct Options {
   std::string config_path, samples_path, log_path, truth_path, out_path, plot_path, estimator;
   std::vector<std::string> logs;  ///< --logs: many logs (files or folders)
   std::string log_list, out_dir;
-  int jobs = 0;  ///< 0: every core
+  std::string interface;  ///< --interface: "" for every interface of the log(s)
+  int jobs = 0;           ///< 0: every core
   bool json = false;
   bool many() const { return !logs.empty() || !log_list.empty(); }
   const std::string& input_path() const { return log_path.empty() ? samples_path : log_path; }
@@ -88,6 +98,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
                              "with the config's can: section");
   samples->excludes(log);
   log->excludes(samples);
+  vmass::tools::add_interface_option(app, &o->interface)->excludes(samples);
   auto* truth =
       app.add_option("--truth", o->truth_path,
                      "truth CSV (time_s,mass_kg) in the input's time base; none by default");
@@ -116,23 +127,6 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
   return std::nullopt;
 }
 
-// The plotting script ships beside our executables (build/bin or the install's bin).
-std::string sibling_program(const std::string& name) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path candidate = self.parent_path() / name;
-    if (fs::exists(candidate)) return candidate.string();
-  }
-  return name;  // rely on PATH
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 /// Removes an output this run wrote, when it is a regular file (never /dev/null or a FIFO).
 void remove_output(const std::string& path) {
   std::error_code ec;
@@ -155,6 +149,7 @@ std::unique_ptr<rt::InputSource> open_input(const Options& o, const vmass::Confi
     std::cerr << "vmass-replay: " << recording.error << "\n";
     return nullptr;
   }
+  if (!o.interface.empty()) recording.log->select_interface(o.interface);
   for (const std::string& w : recording.warnings) std::cerr << "vmass-replay: " << w << "\n";
   *log = recording.log;
   constexpr std::uint64_t kReportedLines = 10;
@@ -176,6 +171,14 @@ void report_clock(const Options& o, const rt::InputSource& source) {
             << " clock jumps (bounded) or stray time stamps (dropped)\n";
 }
 
+/// " on can1, N frames of other interfaces skipped" with --interface, else "".
+std::string interface_report(const rt::LogFrameSource& log) {
+  const rt::InterfaceSelection* selection = log.interface_selection();
+  if (selection == nullptr) return "";
+  return " on " + selection->name() + ", " + std::to_string(selection->skipped()) +
+         " frames of other interfaces skipped";
+}
+
 /// What the input held: frames and lines of a log, skipped rows of a samples CSV.
 void report_input(const Options& o, const rt::InputSource& source, const rt::LogFrameSource* log,
                   const rt::TickRun& run) {
@@ -191,8 +194,8 @@ void report_input(const Options& o, const rt::InputSource& source, const rt::Log
   const vmass::signals::SignalTableCounters& c = can.table().counters();
   const vmass::can::CandumpStats& lines = log->stats();
   std::cerr << "vmass-replay: " << o.log_path << " (" << vmass::can::log_format_name(log->format())
-            << "): " << lines.frames << " frames, " << lines.corrupt << " corrupt " << log->unit()
-            << "s, " << lines.comments << " " << log->unit()
+            << "): " << lines.frames << " frames" << interface_report(*log) << ", " << lines.corrupt
+            << " corrupt " << log->unit() << "s, " << lines.comments << " " << log->unit()
             << "s without a frame (headers, comments, events); decoded " << c.decoded
             << ", unknown id " << c.unknown_id << ", too short " << c.malformed << ", error frames "
             << c.error_frames << "\n";
@@ -204,10 +207,10 @@ void report_input(const Options& o, const rt::InputSource& source, const rt::Log
 }
 
 /// The truth, when --truth names one. False (and a message) when it cannot be read.
-bool load_truth(const Options& o, std::optional<vmass::Truth>* truth) {
+bool load_truth(const Options& o, std::optional<vmass::scoring::Truth>* truth) {
   if (o.truth_path.empty()) return true;
   std::string error;
-  *truth = vmass::Truth::load(o.truth_path, &error);
+  *truth = vmass::scoring::load_truth_csv(o.truth_path, &error);
   if (!*truth) std::cerr << "vmass-replay: " << error << "\n";
   return truth->has_value();
 }
@@ -234,7 +237,7 @@ bool plot(const Options& o, const std::string& csv_path, const std::string& esti
 /// One input (--log or --samples): the summary table (or JSON), the CSV and the plot.
 int replay_one_input(const Options& o, const vmass::Config& config,
                      const vmass::PipelineParams& params) {
-  std::optional<vmass::Truth> truth;
+  std::optional<vmass::scoring::Truth> truth;
   if (!load_truth(o, &truth)) return kExitUsage;
   rt::LogFrameSource* log = nullptr;
   std::unique_ptr<rt::InputSource> source = open_input(o, config, &log);
@@ -249,7 +252,7 @@ int replay_one_input(const Options& o, const vmass::Config& config,
     }
   }
   rt::TickStep step(params);
-  vmass::ReplaySummary summary(truth);
+  vmass::scoring::ReplaySummary summary(truth);
   rt::TickRun run;
   const std::string refusal =
       vmass::play_recording(*source, step, truth, &summary, writer.get(), &run);
@@ -272,13 +275,15 @@ int replay_one_input(const Options& o, const vmass::Config& config,
   }
   // The end of the input: the open Bayes batch enters the final estimate (the CSV keeps one
   // row per tick; the summary reports the flushed estimate).
-  if (step.pipeline().flush()) summary.finish(step.pipeline().estimate());
+  if (step.flush()) summary.finish(step.pipeline().estimate());
   if (writer && !writer->close()) {
     std::cerr << "vmass-replay: " << csv_path << ": write failed\n";
     return kExitFailure;
   }
   const std::string name(step.pipeline().regressor().name());
-  std::cout << (o.json ? summary.json(name) + "\n" : summary.table(name));
+  const vmass::scoring::ReplaySummary::Result result = summary.result();
+  std::cout << (o.json ? vmass::scoring::replay_json(result, name) + "\n"
+                       : vmass::scoring::replay_table(result, name));
   // No believable mass at the end: the summary says so; the diagnostics say it too.
   const vmass::Estimate& last = step.pipeline().estimate();
   if (last.reason == vmass::StatusReason::kMassImplausible) {
@@ -293,13 +298,19 @@ int replay_one_input(const Options& o, const vmass::Config& config,
 }
 
 /// How much driving the logs held and how fast it went, on stderr.
-void report_many(const std::vector<vmass::FleetLogResult>& results, std::size_t skipped, int jobs,
-                 double seconds) {
+void report_many(const Options& o, const std::vector<vmass::FleetLogResult>& results,
+                 std::size_t skipped, int jobs, double seconds) {
   double driving_s = 0.0;
   long failed = 0;
+  std::uint64_t other_interface_frames = 0;
   for (const vmass::FleetLogResult& r : results) {
     driving_s += r.summary.duration_s;
     if (!r.error.empty()) ++failed;
+    other_interface_frames += r.other_interface_frames;
+  }
+  if (!o.interface.empty()) {
+    std::cerr << "vmass-replay: interface " << o.interface << ": " << other_interface_frames
+              << " frames of other interfaces skipped\n";
   }
   const double n = static_cast<double>(results.size());
   char line[256];
@@ -334,6 +345,7 @@ int replay_many_logs(const Options& o, const vmass::Config& config,
   }
   for (const std::string& w : can.inputs->warnings) std::cerr << "vmass-replay: " << w << "\n";
   plan.out_dir = o.out_dir;
+  plan.interface = o.interface;
   plan.jobs =
       o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const auto start = std::chrono::steady_clock::now();
@@ -349,7 +361,7 @@ int replay_many_logs(const Options& o, const vmass::Config& config,
     }
   }
   std::cout << table;
-  report_many(results, skipped.size(), plan.jobs, took.count());
+  report_many(o, results, skipped.size(), plan.jobs, took.count());
   return all_ok ? kExitOk : kExitFailure;
 }
 
@@ -361,6 +373,11 @@ int main(int argc, char** argv) {
   vmass::ConfigLoad loaded = vmass::load_config(o.config_path);
   if (!loaded.ok()) {
     std::cerr << "vmass-replay: " << loaded.error << "\n";
+    return kExitUsage;
+  }
+  // The daemon's sections too: a config that replays here must not be refused by vmassd.
+  if (const auto service = vmass::service::load_service_settings(*loaded.config); !service.ok()) {
+    std::cerr << "vmass-replay: " << service.error << "\n";
     return kExitUsage;
   }
   vmass::PipelineParams params = loaded.config->pipeline;

@@ -3,8 +3,9 @@
 namespace vmass {
 
 std::string play_recording(runtime::InputSource& source, runtime::TickStep& step,
-                           const std::optional<Truth>& truth, ReplaySummary* summary,
-                           EstimateCsvWriter* writer, runtime::TickRun* run) {
+                           const std::optional<scoring::Truth>& truth,
+                           scoring::ReplaySummary* summary, EstimateCsvWriter* writer,
+                           runtime::TickRun* run) {
   const double rate_hz = step.pipeline().params().estimator.differencing.tick_rate_hz;
   const TimeUs tick_period_us = from_seconds(1.0 / rate_hz);
   std::string truth_refusal;

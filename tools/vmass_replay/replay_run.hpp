@@ -7,11 +7,11 @@
 #include <optional>
 #include <string>
 
-#include "replay_summary.hpp"
 #include "vmass/csv/estimate_csv.hpp"
 #include "vmass/runtime/input_source.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/scoring/replay_summary.hpp"
 
 namespace vmass {
 
@@ -19,7 +19,8 @@ namespace vmass {
 /// null, the CSV. Returns "" on success, else why the truth was refused (checked at tick 0;
 /// nothing is summarised or written after a refusal).
 std::string play_recording(runtime::InputSource& source, runtime::TickStep& step,
-                           const std::optional<Truth>& truth, ReplaySummary* summary,
-                           EstimateCsvWriter* writer, runtime::TickRun* run);
+                           const std::optional<scoring::Truth>& truth,
+                           scoring::ReplaySummary* summary, EstimateCsvWriter* writer,
+                           runtime::TickRun* run);
 
 }  // namespace vmass

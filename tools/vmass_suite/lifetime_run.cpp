@@ -62,7 +62,7 @@ PipelineParams params_for(const Config& config, const std::string& estimator) {
 
 /// The drive through a pipeline restored from the variant's state file, saved there after it
 /// as vmassd saves it at its stop (the open batch flushed; nothing saved without a prior).
-EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const TruthTrack& truth,
+EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Truth& truth,
                                const std::string& series, bool* restored, std::string* error) {
   auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
   const service::StateRestore restore = service::restore_pipeline_state(v.state_path, *pipeline);
@@ -84,7 +84,7 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   return r;
 }
 
-EstimatorResult fresh_drive(const Variant& v, const DecodedDrive& d, const TruthTrack& truth,
+EstimatorResult fresh_drive(const Variant& v, const DecodedDrive& d, const Truth& truth,
                             const std::string& series) {
   auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
   return run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
@@ -164,7 +164,7 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       return out;
     }
     const TimeUs offset = from_seconds(sim::kLifetimeDriveSpacingS * (drive.index - 1));
-    const TruthTrack truth = truth_track(result, offset);
+    const Truth truth = truth_track(result, offset);
     for (const Variant& v : all) {
       sim::DrawnVehicle on_bus = vehicle;
       on_bus.sensors.deflection = v.deflection;

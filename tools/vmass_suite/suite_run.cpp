@@ -29,7 +29,7 @@ class SeriesWriter {
     out_.open(path, std::ios::trunc);
     out_ << "time_s,true_mass_kg,mass_kg,ci_low_kg,ci_high_kg,converged\n";
   }
-  void write(const EstimatePoint& p, double truth) {
+  void write(const scoring::EstimatePoint& p, double truth) {
     if (!out_.is_open() || count_++ % 10 != 0) return;  // 10 Hz is plenty for a plot
     out_ << to_seconds(p.time_us) << ',' << truth << ',';
     if (p.has_mass) out_ << p.mass_kg;
@@ -47,7 +47,7 @@ class SeriesWriter {
 };
 
 EstimatorResult run_vmass(const std::string& name, const Config& config,
-                          const std::vector<Sample>& samples, const TruthTrack& truth,
+                          const std::vector<Sample>& samples, const Truth& truth,
                           const std::string& series_path) {
   PipelineParams params = config.pipeline;
   params.estimator.type = name == "rls" ? RegressorType::kRls : RegressorType::kBayes;
@@ -56,7 +56,7 @@ EstimatorResult run_vmass(const std::string& name, const Config& config,
 }
 
 EstimatorResult run_baseline(const std::string& name, const Config& config,
-                             const std::vector<Sample>& samples, const TruthTrack& truth,
+                             const std::vector<Sample>& samples, const Truth& truth,
                              const std::string& series_path) {
   EstimatorResult r;
   r.estimator = name;
@@ -77,13 +77,13 @@ EstimatorResult run_baseline(const std::string& name, const Config& config,
     r.unsupported_reason = "unknown estimator '" + name + "'";
     return r;
   }
-  AccuracyMetrics metrics(truth);
+  scoring::AccuracyMetrics metrics(truth);
   SeriesWriter series(series_path);
   for (const Sample& s : samples) {
     baseline->step(s);
     const baselines::BaselineEstimate e = baseline->estimate();
-    EstimatePoint p{s.time_us,   e.has_mass,   e.mass_kg, e.has_interval,
-                    e.ci_low_kg, e.ci_high_kg, false};
+    scoring::EstimatePoint p{s.time_us,   e.has_mass,   e.mass_kg, e.has_interval,
+                             e.ci_low_kg, e.ci_high_kg, false};
     metrics.add(p);
     series.write(p, truth.mass_at(p.time_us));
   }
@@ -103,33 +103,34 @@ std::string series_path(const RunSpec& spec, const std::string& estimator, sim::
 
 }  // namespace
 
-TruthTrack truth_track(const sim::SimulationResult& r, TimeUs time_offset_us) {
-  TruthTrack t;
+Truth truth_track(const sim::SimulationResult& r, TimeUs time_offset_us) {
+  std::vector<TimeUs> times;
+  std::vector<double> masses, speeds;
   for (const sim::TruthRow& row : r.truth) {
-    t.time_us.push_back(row.time_us + time_offset_us);
-    t.mass_kg.push_back(row.mass_kg);
-    t.speed_mps.push_back(row.speed_mps);
+    times.push_back(row.time_us + time_offset_us);
+    masses.push_back(row.mass_kg);
+    speeds.push_back(row.speed_mps);
   }
-  return t;
+  return Truth(std::move(times), std::move(masses), std::move(speeds));
 }
 
 EstimatorResult run_pipeline(const std::string& name, Pipeline& pipeline,
-                             const std::vector<Sample>& samples, const TruthTrack& truth,
+                             const std::vector<Sample>& samples, const Truth& truth,
                              const std::string& series_path) {
   EstimatorResult r;
   r.estimator = name;
-  AccuracyMetrics metrics(truth);
+  scoring::AccuracyMetrics metrics(truth);
   SeriesWriter series(series_path);
   for (const Sample& s : samples) {
     pipeline.step(s);
     const Estimate& e = pipeline.estimate();
-    EstimatePoint p{e.time_us,
-                    e.has_mass(),
-                    e.mass_kg,
-                    e.has_mass(),
-                    e.ci_low_kg,
-                    e.ci_high_kg,
-                    e.status == EstimateStatus::kConverged};
+    scoring::EstimatePoint p{e.time_us,
+                             e.has_mass(),
+                             e.mass_kg,
+                             e.has_mass(),
+                             e.ci_low_kg,
+                             e.ci_high_kg,
+                             e.status == EstimateStatus::kConverged};
     metrics.add(p);
     series.write(p, truth.mass_at(p.time_us));
   }
@@ -179,7 +180,7 @@ RunResult run_suite_case(const RunSpec& spec, const std::string& work_dir) {
   }
   out.duration_s = run.physics.duration_s;
   out.initial_true_mass_kg = result.truth.front().mass_kg;
-  const TruthTrack truth = truth_track(result, 0);
+  const Truth truth = truth_track(result, 0);
   for (sim::Knowledge k : spec.knowledge) {
     DecodeOptions decode_options;
     decode_options.estimator_yaml = spec.estimator_yaml;

@@ -17,13 +17,16 @@
 #include <string>
 #include <vector>
 
-#include "accuracy_metrics.hpp"
 #include "vmass/core/pipeline.hpp"
+#include "vmass/scoring/accuracy_metrics.hpp"
 #include "vmass/sim/datasheet_config.hpp"
 #include "vmass/sim/realism.hpp"
 #include "vmass/sim/simulator.hpp"
 
 namespace vmass::suite {
+
+using scoring::AccuracyResult;
+using scoring::Truth;
 
 struct RunSpec {
   std::string vehicle_id;  ///< "<class>-<seed>"
@@ -63,12 +66,13 @@ struct RunResult {
   std::vector<EstimatorResult> results;
 };
 
-/// The simulation's truth, its times shifted by `time_offset_us` (as the drive's frames).
-TruthTrack truth_track(const sim::SimulationResult& result, TimeUs time_offset_us);
+/// The simulation's truth (mass and speed), its times shifted by `time_offset_us` (as the
+/// drive's frames).
+Truth truth_track(const sim::SimulationResult& result, TimeUs time_offset_us);
 
 /// Steps `pipeline` (new, or restored from a state) through the samples and scores it.
 EstimatorResult run_pipeline(const std::string& name, Pipeline& pipeline,
-                             const std::vector<Sample>& samples, const TruthTrack& truth,
+                             const std::vector<Sample>& samples, const Truth& truth,
                              const std::string& series_path);
 
 /// The estimators run by default: rls, bayes, then every baseline.

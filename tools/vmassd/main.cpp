@@ -1,17 +1,20 @@
 // vmassd: the real-time vehicle mass estimation daemon. Only the command line is here: the
 // daemon is vmass::service::run_daemon (vmass/service/daemon.hpp: its threads and how it ticks).
 //
-//   vmassd --config FILE [--can IFACE | --can-fd FD | --replay LOG [--speed X|max] |
-//          --samples CSV [--speed X|max]] [--lcm-url URL] [--state-file PATH] [--no-restore]
+//   vmassd --config FILE [--can IFACE | --can-fd FD | --replay LOG [--interface NAME]
+//          [--speed X|max] | --samples CSV [--speed X|max]] [--lcm-url URL] [--state-file PATH]
+//          [--no-restore]
 //
 // Publishes vmass.mass_estimate_t on VMASS_ESTIMATE, vmass.status_t on VMASS_STATUS (and
 // vmass.pair_t on VMASS_PAIRS when lcm.publish_pairs). Runs under systemd as Type=notify
 // (config/vmassd.service). SIGTERM/SIGINT: final status, state saved, exit 0. A recording
 // (--replay, --samples) stops the daemon at its end. Exit codes (tools/common/exit_code.hpp):
-// 0 orderly stop, 1 start-up failure (input or LCM cannot be opened), 2 usage or config error.
+// 0 orderly stop, 1 start-up failure (input or LCM cannot be opened), 2 usage or config error
+// (or a replay without a frame on its --interface).
 #include <CLI/CLI.hpp>
 
 #include "exit_code.hpp"
+#include "interface_option.hpp"
 #include "vmass/service/daemon.hpp"
 #include "vmass/service/journal_logging.hpp"
 #include "vmass/service/stop_signals.hpp"
@@ -31,6 +34,7 @@ int main(int argc, char** argv) {
   auto* replay = app.add_option(
       "--replay", o.replay_log,
       "replay a CAN log (candump -l, Vector ASC/BLF, PEAK TRC, ASAM MDF4; found from its content)");
+  vmass::tools::add_interface_option(app, &o.replay_interface)->needs(replay);
   auto* samples = app.add_option("--samples", o.samples_csv,
                                  "replay a samples.csv (inputs already in SI units)");
   app.add_option("--speed", o.speed,

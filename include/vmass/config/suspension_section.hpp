@@ -14,22 +14,17 @@
 #pragma once
 
 #include <array>
-#include <cstddef>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
 
+#include "vmass/config/field_table.hpp"
 #include "vmass/core/static_initializer.hpp"
 
 namespace vmass {
 
-struct SuspensionField {
-  const char* key;
-  double SuspensionParams::*member;
-  bool required;
-};
-
-inline constexpr std::array<SuspensionField, 6> kSuspensionFields{{
+// `levelled: true` (a self-levelling axle) is read beside the table: it makes no key required.
+inline constexpr std::array<Field<SuspensionParams>, 6> kSuspensionFields{{
     {"stiffness_n_per_m", &SuspensionParams::stiffness_n_per_m, true},
     {"empty_deflection_m", &SuspensionParams::empty_deflection_m, false},
     {"progressive_knee_m", &SuspensionParams::progressive_knee_m, false},
@@ -38,17 +33,20 @@ inline constexpr std::array<SuspensionField, 6> kSuspensionFields{{
     {"calibrated_range_kg", &SuspensionParams::calibrated_range_kg, false},
 }};
 
-/// A comment per field (kSuspensionFields' order); "" for none.
-using SuspensionComments = std::array<std::string, kSuspensionFields.size()>;
+/// Reads the section. Not present: the car has no rear deflection sensor (the estimator starts
+/// from the no-static prior). `levelled: true`: it has one on a self-levelling axle, which reads
+/// no load, and no key is required. Unknown keys are errors. Throws ConfigError.
+void read_suspension_section(YamlReader r, bool present, SuspensionParams* params);
 
 /// Emits `suspension` and its map (the keys above, in that order, with the comments) into an
 /// emitter that is inside a map; the emitter's double precision applies.
 void emit_suspension_section(YAML::Emitter& out, const SuspensionParams& params,
-                             const SuspensionComments& comments = {});
+                             const FieldComments& comments = {},
+                             FieldSelection which = FieldSelection::kAll);
 
 /// The section as YAML text ("suspension:\n  stiffness_n_per_m: ...\n"), numbers with
 /// `precision` significant digits (infinities as .inf).
 std::string suspension_section_yaml(const SuspensionParams& params,
-                                    const SuspensionComments& comments = {}, int precision = 10);
+                                    const FieldComments& comments = {}, int precision = 10);
 
 }  // namespace vmass

@@ -29,9 +29,11 @@ class YamlReader {
   /// Read key into *out when present (else leave the default). Throws ConfigError.
   void read(const std::string& key, double* out);
   void read(const std::string& key, int* out);
+  void read(const std::string& key, long* out);
   void read(const std::string& key, bool* out);
   void read(const std::string& key, std::string* out);
   void read(const std::string& key, std::vector<double>* out);
+  void read(const std::string& key, std::vector<int>* out);
   /// Like read() but the key must be present.
   void require(const std::string& key, double* out);
   void require(const std::string& key, std::string* out);

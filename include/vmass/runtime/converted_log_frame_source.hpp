@@ -30,11 +30,13 @@ class ConvertedLogFrameSource final : public LogFrameSource {
   ConvertedLogFrameSource(const ConvertedLogFrameSource&) = delete;
   ConvertedLogFrameSource& operator=(const ConvertedLogFrameSource&) = delete;
 
-  Read read(can::CanFrame* frame, int timeout_ms) override;
   std::string_view interface_name() const override { return interface_; }
 
   /// The converter program this process would run.
   static std::string converter_path();
+
+ protected:
+  Read next_frame(can::CanFrame* frame, std::int64_t* position) override;
 
  private:
   ConvertedLogFrameSource(const std::string& path, can::LogFormat format, FILE* out, pid_t child);

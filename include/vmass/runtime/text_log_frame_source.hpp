@@ -23,7 +23,6 @@ class TextLogFrameSource final : public LogFrameSource {
  public:
   TextLogFrameSource(std::unique_ptr<std::istream> in, const std::string& path,
                      can::LogFormat format, std::unique_ptr<can::LogLineParser> parser);
-  Read read(can::CanFrame* frame, int timeout_ms) override;
   std::string_view interface_name() const override { return interface_; }
 
   /// A stream whose format is found from its first line (standard input or a FIFO: nothing can
@@ -32,6 +31,9 @@ class TextLogFrameSource final : public LogFrameSource {
   static std::unique_ptr<TextLogFrameSource> from_stream(std::unique_ptr<std::istream> in,
                                                          const std::string& name, bool require_time,
                                                          std::string* error);
+
+ protected:
+  Read next_frame(can::CanFrame* frame, std::int64_t* position) override;
 
  private:
   /// `lines` reads *in (from_stream() hands over the reader that read the first line: it may

@@ -37,7 +37,14 @@ class TickStep {
   /// InputSource): the Sample, the pipeline step, and each input's age and validity.
   const TickRecord& tick(std::int64_t tick, TimeUs tick_us, InputSource& source);
 
-  Pipeline& pipeline() { return pipeline_; }
+  /// The pipeline's state, to save (Pipeline::snapshot()).
+  PipelineSnapshot snapshot() const { return pipeline_.snapshot(); }
+  /// Resumes from a saved state (Pipeline::restore()); false: refused, nothing changed.
+  bool restore(const PipelineSnapshot& snapshot) { return pipeline_.restore(snapshot); }
+  /// At the end of the input: takes the open batch in (Pipeline::flush()); true when the
+  /// estimate changed.
+  bool flush() { return pipeline_.flush(); }
+
   const Pipeline& pipeline() const { return pipeline_; }
   const TickRecord& last() const { return record_; }
 

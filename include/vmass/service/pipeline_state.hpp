@@ -9,6 +9,7 @@
 #include <string>
 
 #include "vmass/core/pipeline.hpp"
+#include "vmass/runtime/tick_step.hpp"
 
 namespace vmass::service {
 
@@ -19,6 +20,8 @@ struct StateRestore {
 };
 
 StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline);
+/// The same for the daemon's estimator (before its thread starts).
+StateRestore restore_pipeline_state(const std::string& path, runtime::TickStep& step);
 
 enum class StateSave {
   kSaved,

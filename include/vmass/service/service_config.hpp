@@ -27,10 +27,12 @@
 // Configuration time only (allocates, uses yaml-cpp). Not thread-safe.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include "vmass/config/config.hpp"
+#include "vmass/config/field_table.hpp"
 
 namespace vmass::service {
 
@@ -71,6 +73,32 @@ struct DaemonSettings {
   std::string validate() const;
 };
 
+inline constexpr std::array<Field<LcmSettings>, 7> kLcmFields{{
+    {"url", &LcmSettings::url},
+    {"estimate_channel", &LcmSettings::estimate_channel},
+    {"status_channel", &LcmSettings::status_channel},
+    {"pairs_channel", &LcmSettings::pairs_channel},
+    {"estimate_decimation", &LcmSettings::estimate_decimation},
+    {"status_period_s", &LcmSettings::status_period_s},
+    {"publish_pairs", &LcmSettings::publish_pairs},
+}};
+
+inline constexpr std::array<Field<DaemonSettings>, 6> kDaemonFields{{
+    {"can_interface", &DaemonSettings::can_interface},
+    {"state_file", &DaemonSettings::state_file},
+    {"persist_interval_s", &DaemonSettings::persist_interval_s},
+    {"input_timeout_s", &DaemonSettings::input_timeout_s},
+    {"publish_queue", &DaemonSettings::publish_queue},
+    {"receive_period_ms", &DaemonSettings::receive_period_ms},
+}};
+
+/// `daemon.realtime:`
+inline constexpr std::array<Field<RealtimeSettings>, 3> kRealtimeFields{{
+    {"priority", &RealtimeSettings::priority},
+    {"cpu_affinity", &RealtimeSettings::cpu_affinity},
+    {"lock_memory", &RealtimeSettings::lock_memory},
+}};
+
 struct ServiceSettings {
   LcmSettings lcm;
   DaemonSettings daemon;
@@ -83,8 +111,9 @@ struct ServiceSettingsLoad {
   bool ok() const { return error.empty(); }
 };
 
-/// Parses config.lcm and config.daemon (and reads can.dbc; the rest of `can:` belongs to the
-/// CAN signal mapping and is not checked here).
+/// Parses config.lcm and config.daemon through the tables above (and reads can.dbc; the rest of
+/// `can:` belongs to the CAN signal mapping and is not checked here). vmassd and vmass-replay
+/// both check them, so that a config one accepts the other does not refuse.
 ServiceSettingsLoad load_service_settings(const Config& config);
 
 }  // namespace vmass::service

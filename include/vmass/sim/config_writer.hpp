@@ -14,8 +14,9 @@
 //   drifted +0.2 mm since calibration (SensorSpec). linear_range_kg follows from the written
 //   curve (added load at the centre of gravity that reaches the knee); calibrated_range_kg is the
 //   ballast range of the calibration (800 kg).
-// estimator: tick_rate_hz (the scenario's), differencing_dt_s 0.02 and the gates of the paper's
-//   Tables II and III; bayes.batch_size 100 (the paper's simulation value); other keys default.
+// estimator: `type: bayes`, and tick_rate_hz when the scenario's differs from the default;
+//   every other key is left at its default (nothing is tuned to the simulated car).
+// The keys and their spelling come from the config's field tables (vmass/config/*_section.hpp).
 // No `can:` section (the CSV files need none) and no `lcm:` section (defaults).
 //
 // Stateless functions; thread-safe on distinct streams.
@@ -25,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "vmass/core/pipeline.hpp"
 #include "vmass/sim/simulator.hpp"
 
 namespace vmass::sim {
@@ -34,39 +36,12 @@ struct CalibrationErrors {
   double calibrated_range_kg = 800.0;        ///< ballast range of the calibration (8 x 100 kg)
 };
 
-/// The values written, by formats.md key.
-struct ConfigValues {
-  // vehicle
-  double empty_mass_kg = 0.0;
-  double wheelbase_m = 0.0;
-  double cg_to_front_axle_m = 0.0;
-  double wheel_radius_m = 0.0;
-  double brake_gain_n_per_pa = 0.0;
-  double steering_ratio = 0.0;
-  double cornering_stiffness_front_n_per_rad = 0.0;
-  double cornering_stiffness_rear_n_per_rad = 0.0;
-  double rotating_mass_kg = 0.0;
-  std::vector<double> rotating_mass_by_gear_kg;
-  double gravity_mps2 = 0.0;
-  // suspension
-  double stiffness_n_per_m = 0.0;
-  double empty_deflection_m = 0.0;
-  double progressive_knee_m = 0.0;
-  double progressive_rate_n_per_m2 = 0.0;
-  double linear_range_kg = 0.0;
-  double calibrated_range_kg = 0.0;
-  // estimator
-  double tick_rate_hz = 100.0;
-  double differencing_dt_s = 0.02;
-  int bayes_batch_size = 100;
-};
-
 /// What the team's config says about a car with true parameters `vehicle`, loaded as `loaded`.
-ConfigValues make_config_values(const TrueVehicle& vehicle, const MassProperties& loaded,
-                                double tick_rate_hz, const CalibrationErrors& errors = {});
+PipelineParams make_config_params(const TrueVehicle& vehicle, const MassProperties& loaded,
+                                  double tick_rate_hz, const CalibrationErrors& errors = {});
 
 /// The YAML text; header_comment lines (without '#') go on top.
-void write_config_yaml(std::ostream& os, const ConfigValues& values,
+void write_config_yaml(std::ostream& os, const PipelineParams& params,
                        const std::vector<std::string>& header_comment);
 
 /// Writes DIR/config.yaml for a simulation result. "" or a message naming the file.

@@ -1,29 +1,15 @@
-#include "vmass/csv/truth_csv.hpp"
+#include "vmass/scoring/truth_csv.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "vmass/csv/csv.hpp"
 #include "vmass/io/line_reader.hpp"
 #include "vmass/io/regular_file.hpp"
 
-namespace vmass {
-namespace {
+namespace vmass::scoring {
 
-std::string seconds_text(TimeUs t) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.3f", to_seconds(t));
-  return buf;
-}
-
-}  // namespace
-
-Truth::Truth(std::vector<TimeUs> times, std::vector<double> masses)
-    : times_(std::move(times)), masses_kg_(std::move(masses)) {}
-
-std::optional<Truth> Truth::load(const std::string& path, std::string* error) {
+std::optional<Truth> load_truth_csv(const std::string& path, std::string* error) {
   const io::FileText file = io::read_regular_file(path, io::kMaxTableBytes, "truth file");
   if (!file.ok()) {
     *error = file.error;
@@ -64,20 +50,4 @@ std::optional<Truth> Truth::load(const std::string& path, std::string* error) {
   return Truth(std::move(times), std::move(masses));
 }
 
-double Truth::mass_at(TimeUs t) const {
-  auto it = std::upper_bound(times_.begin(), times_.end(), t);
-  if (it == times_.begin()) return masses_kg_.front();
-  return masses_kg_[static_cast<std::size_t>(std::distance(times_.begin(), it) - 1)];
-}
-
-std::string Truth::check_time_base(TimeUs first_tick_us, TimeUs tick_period_us) const {
-  if (first_tick_us >= first_time_us() - tick_period_us &&
-      first_tick_us <= last_time_us() + tick_period_us) {
-    return "";
-  }
-  return "its times (" + seconds_text(first_time_us()) + " to " + seconds_text(last_time_us()) +
-         " s) do not contain the input's first tick (" + seconds_text(first_tick_us) +
-         " s): another time base (a log with epoch times needs a truth in the same times)";
-}
-
-}  // namespace vmass
+}  // namespace vmass::scoring

@@ -1,26 +1,28 @@
-// Truth: the true mass over time, from a truth.csv (docs/formats.md: time_s, mass_kg, then any
-// other columns), and the rule that says whether a truth describes a replay's time base.
-// Not thread-safe.
+// Truth: what a run is scored against, the true mass (and, when known, the true speed) over
+// time. vmass-replay reads one from a truth.csv (truth_csv.hpp); the accuracy suite takes the
+// simulator's rows (its speed gives the drive's start). Not thread-safe.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "vmass/core/time.hpp"
 
-namespace vmass {
+namespace vmass::scoring {
 
-/// The true mass over time (truth.csv: time_s, mass_kg, ...).
 class Truth {
  public:
-  /// Empty error on success.
-  static std::optional<Truth> load(const std::string& path, std::string* error);
   Truth() = default;
-  Truth(std::vector<TimeUs> times, std::vector<double> masses);
-  /// The true mass at time t (the last row at or before t).
+  /// Rows in increasing time; speeds empty when not known (the drive then starts at once).
+  Truth(std::vector<TimeUs> times, std::vector<double> masses_kg,
+        std::vector<double> speeds_mps = {});
+
+  /// The true mass at t: the last row at or before t, the first row before it; NaN when empty.
   double mass_at(TimeUs t) const;
+  /// The first time the true speed exceeds 0.5 m/s (the first row's time if never; 0 if empty).
+  TimeUs drive_start_us() const;
   bool empty() const { return times_.empty(); }
+  std::size_t size() const { return times_.size(); }
   TimeUs first_time_us() const { return times_.front(); }
   TimeUs last_time_us() const { return times_.back(); }
 
@@ -34,6 +36,7 @@ class Truth {
  private:
   std::vector<TimeUs> times_;
   std::vector<double> masses_kg_;
+  std::vector<double> speeds_mps_;
 };
 
-}  // namespace vmass
+}  // namespace vmass::scoring

@@ -1,5 +1,6 @@
-// SpscQueue: a bounded single-producer single-consumer ring of trivially copyable records (the
-// estimator thread hands its per-tick records to the publisher thread through it).
+// SpscQueue: a bounded single-producer single-consumer ring of trivially copyable records
+// (vmassd's receive thread hands its records to the estimator thread through one, the estimator
+// thread its per-tick records to the publisher thread through another).
 //
 // Capacity is fixed at construction (rounded up to a power of two); push() never blocks and
 // fails when the ring is full (the producer counts the drop), pop() fails when it is empty.
@@ -13,7 +14,7 @@
 #include <memory>
 #include <type_traits>
 
-namespace vmass::service {
+namespace vmass::runtime {
 
 template <class T>
 class SpscQueue {
@@ -61,4 +62,4 @@ class SpscQueue {
   alignas(64) std::atomic<std::size_t> tail_{0};
 };
 
-}  // namespace vmass::service
+}  // namespace vmass::runtime

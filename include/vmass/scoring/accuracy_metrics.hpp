@@ -2,19 +2,22 @@
 // accuracy suite computes these for every (vehicle, scenario, seed, knowledge, estimator) and
 // docs/accuracy.md aggregates them over the population.
 //
-// Times are measured from the drive's start (the first tick at which the true speed exceeds
-// 0.5 m/s). Errors are relative to the true mass AT THAT TIME (a load change moves the target).
+// Times are measured from the drive's start (Truth::drive_start_us: the first tick at which the
+// true speed exceeds 0.5 m/s). Errors are relative to the true mass AT THAT TIME (a load change
+// moves the target; tick_comparison.hpp).
 //   final_error_pct        (estimate - truth) / truth at the last tick, %
 //   error_at_pct[i]        the same at drive start + kCheckpointsS[i] (20 s, 60 s)
-//   time_within_s[j]       the time from the drive's start after which the estimate stays within
-//                          kTolerancesPct[j] (5, 2, 1 %) to the end; NaN when it never does
+//   time_within_since_drive_start_s[j]   the time from the DRIVE'S START after which the
+//                          estimate stays within kTolerancesPct[j] (5, 2, 1 %) to the end (0
+//                          when within from before the start); NaN when not within at the end
 //   rms_last_half_pct      RMS of the relative error over the last half of the ticks
-//   covered_at[i], covered_end   whether the 95 % interval contains the truth then (-1: no
-//                          interval or no estimate)
+//   covered_at_checkpoint[i], covered_at_end   whether the 95 % interval contains the truth
+//                          then (-1: no interval or no estimate)
 //   halfwidth_end_pct      the interval's half-width at the end, % of the truth
 //   converged_outside_fraction   among the ticks after the first `converged` status, the share
 //                          with the truth outside the interval (NaN: never converged)
-// A tick without an estimate counts as outside every tolerance.
+// A tick without an estimate counts as outside every tolerance. vmass-replay scores otherwise
+// (replay_summary.hpp: times from the first tick, coverage of the dynamic ticks).
 //
 // Not thread-safe; allocates nothing per add().
 #pragma once
@@ -25,23 +28,14 @@
 #include <vector>
 
 #include "vmass/core/time.hpp"
+#include "vmass/scoring/truth.hpp"
+#include "vmass/scoring/within_tracker.hpp"
 
-namespace vmass::suite {
+namespace vmass::scoring {
 
 constexpr std::array<double, 2> kCheckpointsS = {20.0, 60.0};
-constexpr std::array<double, 3> kTolerancesPct = {5.0, 2.0, 1.0};
-
-/// The true mass and speed at every tick of the simulation (truth.csv's time base).
-struct TruthTrack {
-  std::vector<TimeUs> time_us;
-  std::vector<double> mass_kg;
-  std::vector<double> speed_mps;
-
-  /// The truth at t (the last row at or before t; the first row before it).
-  double mass_at(TimeUs t) const;
-  /// The first time the true speed exceeds 0.5 m/s (the first row's time if never).
-  TimeUs drive_start_us() const;
-};
+/// The suite's tolerances, in percent of the truth.
+constexpr Tolerances kTolerancesPct = {5.0, 2.0, 1.0};
 
 struct EstimatePoint {
   TimeUs time_us = 0;
@@ -61,29 +55,31 @@ struct AccuracyResult {
   double true_final_mass_kg = kNaN;
   double final_error_pct = kNaN;
   std::array<double, kCheckpointsS.size()> error_at_pct{kNaN, kNaN};
-  std::array<double, kTolerancesPct.size()> time_within_s{kNaN, kNaN, kNaN};
+  std::array<double, kToleranceCount> time_within_since_drive_start_s{kNaN, kNaN, kNaN};
   double rms_last_half_pct = kNaN;
-  std::array<int, kCheckpointsS.size()> covered_at{-1, -1};
-  int covered_end = -1;
+  std::array<int, kCheckpointsS.size()> covered_at_checkpoint{-1, -1};
+  int covered_at_end = -1;
   double halfwidth_end_pct = kNaN;
   double converged_outside_fraction = kNaN;
 };
 
 class AccuracyMetrics {
  public:
-  explicit AccuracyMetrics(const TruthTrack& truth);
+  explicit AccuracyMetrics(const Truth& truth);
 
   /// One tick's estimate, in increasing time.
   void add(const EstimatePoint& p);
   AccuracyResult result() const;
 
  private:
-  const TruthTrack& truth_;
+  void check_checkpoints(const EstimatePoint& p, double err, bool covers);
+  void end_scores(AccuracyResult* r) const;
+
+  const Truth& truth_;
   TimeUs start_us_;
   std::vector<double> errors_pct_;  ///< per tick (NaN without an estimate), for the RMS
   AccuracyResult r_;
-  std::array<TimeUs, kTolerancesPct.size()> last_outside_us_{};
-  std::array<bool, kTolerancesPct.size()> ever_outside_{};
+  WithinTracker within_{kTolerancesPct};
   TimeUs last_time_us_ = 0;
   EstimatePoint last_;
   bool seen_converged_ = false;
@@ -91,4 +87,4 @@ class AccuracyMetrics {
   long outside_after_converged_ = 0;
 };
 
-}  // namespace vmass::suite
+}  // namespace vmass::scoring

@@ -1,0 +1,73 @@
+// ReplaySummary: what vmass-replay reports about a run, and how good it was against a truth
+// (truth.hpp). Its text, table and JSON, is replay_summary_text.hpp.
+//
+// Metrics (per run): final mass and error (tick_comparison.hpp); the time within 5%, 2% and 1%
+// of the truth, measured from the first tick (see Result); the coverage of dynamic ticks (the
+// fraction of ticks with a dynamic estimate, one that used a pair, whose 95% interval contains
+// the truth); the prior and where it came from; pairs used in the estimate and accepted by the
+// supervisor, apart (Bayes holds a batch back until it completes or is flushed); availability
+// per block; status at the end. The accuracy suite scores differently (accuracy_metrics.hpp).
+// Not thread-safe.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "vmass/core/estimate.hpp"
+#include "vmass/scoring/truth.hpp"
+#include "vmass/scoring/within_tracker.hpp"
+
+namespace vmass::scoring {
+
+/// The replay's tolerances, as fractions of the truth: 5, 2, 1 %.
+constexpr Tolerances kReplayTolerances = {0.05, 0.02, 0.01};
+
+class ReplaySummary {
+ public:
+  explicit ReplaySummary(std::optional<Truth> truth) : truth_(std::move(truth)) {}
+
+  /// The estimate of each tick, in order.
+  void add(const Estimate& estimate);
+  /// The estimate after Pipeline::flush() at the end of the input (same time as the last tick,
+  /// the open Bayes batch taken in): it becomes the final estimate; no tick is counted.
+  void finish(const Estimate& flushed);
+
+  struct Result {
+    bool has_estimate = false;
+    Estimate final_estimate;
+    long pairs_accepted = 0;  ///< by the supervisor, both blocks (pairs_used: in the estimate)
+    std::optional<double> true_mass_kg;
+    std::optional<double> error_percent;  ///< (estimate - truth) / truth
+    /// Per kReplayTolerances: the time from the FIRST TICK after which every estimate stays
+    /// within the tolerance to the end (from the first estimate when none was ever outside).
+    /// Empty when the final estimate is outside, and when it used no pair (a prior proves
+    /// nothing). Ticks without an estimate are not counted.
+    std::array<std::optional<double>, kToleranceCount> time_within_since_first_tick_s;
+    /// Among the ticks whose estimate used a pair, the share whose interval covers the truth.
+    std::optional<double> coverage_of_dynamic_ticks;
+    double duration_s = 0.0;
+    long ticks = 0;
+    long reinitialisations = 0;
+  };
+  Result result() const;
+
+ private:
+  void check_tolerances(const Estimate& e);
+  void time_within(Result* r) const;
+
+  std::optional<Truth> truth_;
+  TimeUs first_us_ = 0;
+  bool started_ = false;
+  Estimate last_;
+  bool has_last_ = false;
+  long ticks_ = 0;
+  long reinitialisations_ = 0;
+  long dynamic_ticks_ = 0;
+  long covered_ticks_ = 0;
+  WithinTracker within_{kReplayTolerances};
+  bool any_mass_ = false;
+  TimeUs first_mass_us_ = 0;
+};
+
+}  // namespace vmass::scoring
