@@ -4,22 +4,6 @@
 
 namespace vmass::runtime {
 
-CandumpRecording open_candump_recording(const std::string& path, const Config& config) {
-  CandumpRecording out;
-  signals::CanInputsLoad can = signals::load_can_inputs(config);
-  if (!can.ok()) {
-    out.error = can.error;
-    return out;
-  }
-  out.warnings = can.inputs->warnings;
-  std::unique_ptr<CandumpFrameSource> frames = CandumpFrameSource::open(path, &out.error);
-  if (!frames) return out;
-  out.log = frames.get();
-  out.source =
-      std::make_unique<CanInputSource>(std::move(frames), can.inputs->decoder, can.inputs->mapping);
-  return out;
-}
-
 LogRecording open_log_recording(const std::string& path, const Config& config) {
   LogRecording out;
   signals::CanInputsLoad can = signals::load_can_inputs(config);
@@ -33,6 +17,7 @@ LogRecording open_log_recording(const std::string& path, const Config& config) {
   out.log = frames.get();
   out.source =
       std::make_unique<CanInputSource>(std::move(frames), can.inputs->decoder, can.inputs->mapping);
+  out.can = std::move(can.inputs);
   return out;
 }
 

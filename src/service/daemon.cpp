@@ -22,7 +22,6 @@
 #include "vmass/config/config.hpp"
 #include "vmass/io/excerpt.hpp"
 #include "vmass/runtime/can_input_source.hpp"
-#include "vmass/runtime/candump_frame_source.hpp"
 #include "vmass/runtime/log_frame_source.hpp"
 #include "vmass/runtime/recording.hpp"
 #include "vmass/runtime/samples_csv_source.hpp"
@@ -158,48 +157,49 @@ std::unique_ptr<runtime::FrameSource> open_socketcan(const DaemonOptions& option
   return frames;
 }
 
-/// --replay LOG, --can IFACE or --can-fd FD: frames through the config's can: mapping.
-OpenedInput open_can_input(const DaemonOptions& options, const Config& config,
-                           const ServiceSettings& settings) {
+/// --replay LOG: a log of any format through the config's can: mapping, opened as vmass-replay
+/// opens it (runtime::open_log_recording).
+OpenedInput open_replay(const DaemonOptions& options, const Config& config) {
+  runtime::LogRecording recording = runtime::open_log_recording(options.replay_log, config);
+  if (!recording.source) {
+    spdlog::error("{}", recording.error);
+    return {nullptr, kExitUsage};
+  }
+  log_mapping(*recording.can);
+  runtime::LogFrameSource* log = recording.log;
+  spdlog::info("{}: {}", options.replay_log, can::log_format_name(log->format()));
+  if (!options.replay_interface.empty()) {
+    log->select_interface(options.replay_interface);
+    spdlog::info("{}: interface {} only", options.replay_log, options.replay_interface);
+  }
+  log->on_error([log](const can::CandumpError& e) {
+    if (log->stats().corrupt <= 10) spdlog::warn("{} (skipped)", e.message);
+  });
+  return {std::move(recording.source), kExitOk, log};
+}
+
+/// --can IFACE or --can-fd FD: the bus's frames through the config's can: mapping.
+OpenedInput open_live(const DaemonOptions& options, const Config& config,
+                      const ServiceSettings& settings) {
   signals::CanInputsLoad can = signals::load_can_inputs(config);
   if (!can.ok()) {
     spdlog::error("{}", can.error);
     return {nullptr, kExitUsage};
   }
   log_mapping(*can.inputs);
-  std::string error;
-  std::unique_ptr<runtime::FrameSource> frames;
-  const runtime::LogFrameSource* replayed = nullptr;
-  if (!options.replay_log.empty()) {
-    std::unique_ptr<runtime::LogFrameSource> log =
-        runtime::open_log_frame_source(options.replay_log, &error);
-    if (!log) {
-      spdlog::error("{}", error);
-      return {nullptr, kExitUsage};
-    }
-    spdlog::info("{}: {}", options.replay_log, can::log_format_name(log->format()));
-    if (!options.replay_interface.empty()) {
-      log->select_interface(options.replay_interface);
-      spdlog::info("{}: interface {} only", options.replay_log, options.replay_interface);
-    }
-    log->on_error([log = log.get()](const can::CandumpError& e) {
-      if (log->stats().corrupt <= 10) spdlog::warn("{} (skipped)", e.message);
-    });
-    replayed = log.get();
-    frames = std::move(log);
-  } else {
-    int exit_code = kExitOk;
-    frames = open_socketcan(options, settings, can.inputs->decoder->database(), &exit_code);
-    if (!frames) return {nullptr, exit_code};
-  }
+  int exit_code = kExitOk;
+  std::unique_ptr<runtime::FrameSource> frames =
+      open_socketcan(options, settings, can.inputs->decoder->database(), &exit_code);
+  if (!frames) return {nullptr, exit_code};
   return {std::make_unique<runtime::CanInputSource>(std::move(frames), can.inputs->decoder,
                                                     can.inputs->mapping),
-          kExitOk, replayed};
+          kExitOk};
 }
 
 OpenedInput open_input(const DaemonOptions& options, const Config& config,
                        const ServiceSettings& settings, const Plan& plan) {
-  if (options.samples_csv.empty()) return open_can_input(options, config, settings);
+  if (!options.replay_log.empty()) return open_replay(options, config);
+  if (options.samples_csv.empty()) return open_live(options, config, settings);
   const double timeout_s = settings.daemon.input_timeout_s > 0.0
                                ? settings.daemon.input_timeout_s
                                : runtime::default_samples_timeout_s(plan.tick_rate_hz);

@@ -11,31 +11,24 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "vmass/config/config.hpp"
 #include "vmass/runtime/can_input_source.hpp"
-#include "vmass/runtime/candump_frame_source.hpp"
 #include "vmass/runtime/log_frame_source.hpp"
 #include "vmass/runtime/samples_csv_source.hpp"
+#include "vmass/signals/signal_mapping.hpp"
 
 namespace vmass::runtime {
-
-struct CandumpRecording {
-  std::unique_ptr<CanInputSource> source;  ///< null when the log or the mapping cannot be used
-  CandumpFrameSource* log = nullptr;       ///< the source's frames (line statistics, errors)
-  std::vector<std::string> warnings;       ///< DBC deviations that were tolerated
-  std::string error;                       ///< "file:line: key: message" when source is null
-};
-
-CandumpRecording open_candump_recording(const std::string& path, const Config& config);
 
 struct LogRecording {
   std::unique_ptr<CanInputSource> source;  ///< null when the log or the mapping cannot be used
   LogFrameSource* log = nullptr;           ///< the source's frames (format, statistics, errors)
   std::vector<std::string> warnings;       ///< DBC deviations that were tolerated
   std::string error;                       ///< "file:line: key: message" when source is null
+  std::optional<signals::CanInputs> can;   ///< the DBC and mapping it decodes with (to log them)
 };
 
 /// A CAN log of any format vmass reads (log_frame_source.hpp) through the config's mapping.
