@@ -41,8 +41,37 @@ void LateralExtractor::reset() {
   has_last_time_ = false;
 }
 
-// Over 80 lines: Table III's gates in one place; the extractors are reworked on main (issue 8).
-// NOLINTNEXTLINE(readability-function-size)
+void LateralExtractor::step_velocity_filter(const Sample& s) {
+  const double step_s = has_last_time_ ? to_seconds(s.time_us - last_time_us_) : 0.0;
+  if (has_last_time_ && !(step_s > 0.0 && step_s < 10.0 * to_seconds(tick_us_))) {
+    reset();  // time went backwards or jumped: restart the filter
+  }
+  velocity_filter_.step(has_last_time_ ? step_s : 0.0, s.accel_x_mps2, s.accel_y_mps2,
+                        s.yaw_rate_radps, s.speed_mps);
+  has_last_time_ = true;
+  last_time_us_ = s.time_us;
+}
+
+PairVerdict LateralExtractor::gate(const Record& now, const Record& then) const {
+  if (std::max(std::abs(now.accel_y_mps2), std::abs(then.accel_y_mps2)) >=
+      params_.max_abs_accel_y_mps2) {
+    return PairVerdict::kLateralAccel;
+  }
+  if (std::max(std::abs(now.accel_x_mps2), std::abs(then.accel_x_mps2)) >=
+      params_.max_abs_accel_x_mps2) {
+    return PairVerdict::kLongitudinalAccel;
+  }
+  const double min_steer_rad = params_.min_abs_steering_wheel_angle_deg * kDegToRad;
+  if (std::min(std::abs(now.steering_wheel_angle_rad), std::abs(then.steering_wheel_angle_rad)) <=
+      min_steer_rad) {
+    return PairVerdict::kSteering;
+  }
+  if (std::abs(now.accel_y_mps2 - then.accel_y_mps2) <= params_.min_abs_delta_accel_y_mps2) {
+    return PairVerdict::kSmallDeltaAccel;
+  }
+  return PairVerdict::kAccepted;
+}
+
 Extraction LateralExtractor::step(const Sample& s) {
   Extraction out;
   if (!params_.enabled) {
@@ -63,14 +92,7 @@ Extraction LateralExtractor::step(const Sample& s) {
   }
   // The velocity filter runs on every valid tick, also below the gates, so that v_y is ready
   // when an event comes.
-  const double step_s = has_last_time_ ? to_seconds(s.time_us - last_time_us_) : 0.0;
-  if (has_last_time_ && !(step_s > 0.0 && step_s < 10.0 * to_seconds(tick_us_))) {
-    reset();  // time went backwards or jumped: restart the filter
-  }
-  velocity_filter_.step(has_last_time_ ? step_s : 0.0, s.accel_x_mps2, s.accel_y_mps2,
-                        s.yaw_rate_radps, s.speed_mps);
-  has_last_time_ = true;
-  last_time_us_ = s.time_us;
+  step_velocity_filter(s);
 
   if (std::abs(s.speed_mps) < params_.min_speed_mps) {
     history_.clear();  // slip angles divide by v_x: nothing to difference at low speed
@@ -97,31 +119,11 @@ Extraction LateralExtractor::step(const Sample& s) {
   const Record* then_ptr = history_.push_and_get_then(now, &out.verdict);
   if (then_ptr == nullptr) return out;
   const Record& then = *then_ptr;
-  if (std::max(std::abs(now.accel_y_mps2), std::abs(then.accel_y_mps2)) >=
-      params_.max_abs_accel_y_mps2) {
-    out.verdict = PairVerdict::kLateralAccel;
-    return out;
-  }
-  if (std::max(std::abs(now.accel_x_mps2), std::abs(then.accel_x_mps2)) >=
-      params_.max_abs_accel_x_mps2) {
-    out.verdict = PairVerdict::kLongitudinalAccel;
-    return out;
-  }
-  const double min_steer_rad = params_.min_abs_steering_wheel_angle_deg * kDegToRad;
-  if (std::min(std::abs(now.steering_wheel_angle_rad), std::abs(then.steering_wheel_angle_rad)) <=
-      min_steer_rad) {
-    out.verdict = PairVerdict::kSteering;
-    return out;
-  }
-  const double delta_accel = now.accel_y_mps2 - then.accel_y_mps2;
-  if (std::abs(delta_accel) <= params_.min_abs_delta_accel_y_mps2) {
-    out.verdict = PairVerdict::kSmallDeltaAccel;
-    return out;
-  }
-  out.verdict = PairVerdict::kAccepted;
+  out.verdict = gate(now, then);  // Table III
+  if (out.verdict != PairVerdict::kAccepted) return out;
   out.pair.time_us = now.time_us;
   out.pair.block = Block::kLateral;
-  out.pair.delta_accel_mps2 = delta_accel;
+  out.pair.delta_accel_mps2 = now.accel_y_mps2 - then.accel_y_mps2;
   out.pair.y_n = now.lateral_force_n - then.lateral_force_n;
   out.pair.weight = params_.weight;
   return out;

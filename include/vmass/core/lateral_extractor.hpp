@@ -62,6 +62,11 @@ class LateralExtractor {
     double steering_wheel_angle_rad;
   };
 
+  /// The velocity filter's step, restarted when time went backwards or jumped.
+  void step_velocity_filter(const Sample& s);
+  /// Table III's gates on a pair; kAccepted when it passes them all.
+  PairVerdict gate(const Record& now, const Record& then) const;
+
   VehicleParams vehicle_;
   LateralParams params_;
   TimeUs tick_us_;
