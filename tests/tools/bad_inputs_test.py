@@ -191,6 +191,13 @@ def cases(tmp):
     out.append(("vmassd.config_lcm_provider", [vmassd, "--config", write(
         "lcm_provider.yaml", BASE_CONFIG + "\nlcm:\n  url: bogus://x\n"), "--samples", samples,
         "--speed", "max", "--no-restore"]))
+    # A config vmassd would refuse is refused by vmass-replay too (the same section tables).
+    out.append(("replay.config_daemon_section", [replay, "--config", write(
+        "daemon_section.yaml", BASE_CONFIG + "\ndaemon:\n  persist_interval_s: 0\n"),
+        "--samples", samples]))
+    out.append(("replay.config_lcm_key_typo", [replay, "--config", write(
+        "lcm_key_typo.yaml", BASE_CONFIG + "\nlcm:\n  urll: udpm://239.255.76.67:7667\n"),
+        "--samples", samples]))
     out.append(("replay.stdout_full", [replay, "--config", config, "--samples", samples,
                                        "--out", "-"], "/dev/full"))
     return out
