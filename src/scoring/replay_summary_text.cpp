@@ -38,6 +38,15 @@ void truth_rows(const ReplaySummary::Result& r, std::ostringstream& out) {
       << (coverage ? fixed(100.0 * *coverage, 1) + "% of ticks" : std::string("n/a")) << "\n";
 }
 
+// {"small_delta_force": 11160, "speed": 5400, ...}: why the block took no pair, by tick.
+json::Json refusals_json(const VerdictTally& tally, Block block) {
+  json::Json out = json::Json::object();
+  for (const auto& [verdict, count] : tally.refusals(block)) {
+    out[std::string(verdict_name(verdict))] = count;
+  }
+  return out;
+}
+
 // The final estimate, its prior, status and pairs, and each block's counters.
 void estimate_fields(const ReplaySummary::Result& r, json::Json* j) {
   const Estimate& e = r.final_estimate;
@@ -61,7 +70,8 @@ void estimate_fields(const ReplaySummary::Result& r, json::Json* j) {
     (*j)[key] = {{"ticks", c.ticks},
                  {"candidates", c.candidates},
                  {"accepted", c.accepted},
-                 {"rejected_innovation", c.rejected_innovation}};
+                 {"rejected_innovation", c.rejected_innovation},
+                 {"refused", refusals_json(r.verdicts, static_cast<Block>(b))}};
   }
 }
 
@@ -125,6 +135,8 @@ std::string replay_table(const ReplaySummary::Result& r, const std::string& esti
     out << kBlockLabels[b] << "availability " << fixed(100.0 * c.availability(), 1) << "% ("
         << c.accepted << " accepted, " << c.rejected_innovation << " innovation-rejected of "
         << c.candidates << " candidates)\n";
+    const std::string why = r.verdicts.describe_refusals(static_cast<Block>(b));
+    if (!why.empty()) out << "  ticks without pair  " << why << " (verdicts)\n";
   }
   if (r.true_mass_kg) truth_rows(r, out);
   return out.str();

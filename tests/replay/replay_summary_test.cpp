@@ -150,8 +150,11 @@ TEST(ReplaySummary, JsonCarriesWhatTheTableShows) {
   EXPECT_EQ(j["reason"], "refining") << j;
   EXPECT_EQ(j["status"], "converging") << j;
   EXPECT_EQ(j["mass_std_kg"], 40.0) << j;
-  const json::Json longitudinal = {
-      {"ticks", 1}, {"candidates", 133}, {"accepted", 130}, {"rejected_innovation", 3}};
+  const json::Json longitudinal = {{"ticks", 1},
+                                   {"candidates", 133},
+                                   {"accepted", 130},
+                                   {"rejected_innovation", 3},
+                                   {"refused", json::Json::object()}};  // no verdict added
   EXPECT_EQ(j["longitudinal"], longitudinal) << j;
   EXPECT_EQ(j["lateral"]["ticks"], 0) << j;
   EXPECT_EQ(j["ticks"], 1) << j;

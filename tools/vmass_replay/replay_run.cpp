@@ -14,9 +14,10 @@ std::string play_recording(runtime::InputSource& source, runtime::TickStep& step
   *run = driver.run(clock, [&](std::int64_t k, TimeUs t) {
     if (k == 0 && truth) truth_refusal = truth->check_time_base(t, tick_period_us);
     if (!truth_refusal.empty()) return;
-    const Estimate& e = step.tick(k, t, source).estimate;
-    summary->add(e);
-    if (writer) writer->write(e);
+    const runtime::TickRecord& record = step.tick(k, t, source);
+    summary->add(record.estimate);
+    summary->add_events(record.events);
+    if (writer) writer->write(record.estimate);
   });
   return truth_refusal;
 }

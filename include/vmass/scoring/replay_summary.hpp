@@ -6,8 +6,8 @@
 // fraction of ticks with a dynamic estimate, one that used a pair, whose 95% interval contains
 // the truth); the prior and where it came from; pairs used in the estimate and accepted by the
 // supervisor, apart (Bayes holds a batch back until it completes or is flushed); availability
-// per block; status at the end. The accuracy suite scores differently (accuracy_metrics.hpp).
-// Not thread-safe.
+// per block, and each block's verdicts (why it took no pair); status at the end. The accuracy suite
+// scores differently (accuracy_metrics.hpp). Not thread-safe.
 #pragma once
 
 #include <array>
@@ -16,6 +16,7 @@
 
 #include "vmass/core/estimate.hpp"
 #include "vmass/scoring/truth.hpp"
+#include "vmass/scoring/verdict_tally.hpp"
 #include "vmass/scoring/within_tracker.hpp"
 
 namespace vmass::scoring {
@@ -29,6 +30,8 @@ class ReplaySummary {
 
   /// The estimate of each tick, in order.
   void add(const Estimate& estimate);
+  /// The same tick's outcome of each block (why a pair was or was not taken).
+  void add_events(const std::array<PairEvent, kBlockCount>& events) { verdicts_.add(events); }
   /// The estimate after Pipeline::flush() at the end of the input (same time as the last tick,
   /// the open Bayes batch taken in): it becomes the final estimate; no tick is counted.
   void finish(const Estimate& flushed);
@@ -49,6 +52,7 @@ class ReplaySummary {
     double duration_s = 0.0;
     long ticks = 0;
     long reinitialisations = 0;
+    VerdictTally verdicts;  ///< every block's verdict at every tick (add_events)
   };
   Result result() const;
 
@@ -66,6 +70,7 @@ class ReplaySummary {
   long dynamic_ticks_ = 0;
   long covered_ticks_ = 0;
   WithinTracker within_{kReplayTolerances};
+  VerdictTally verdicts_;
   bool any_mass_ = false;
   TimeUs first_mass_us_ = 0;
 };
