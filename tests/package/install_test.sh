@@ -5,6 +5,8 @@
 #   - the Python types land where the prefix's Python looks: for /usr/local Debian's Python
 #     searches /usr/local/lib/python3.X/dist-packages, not .../python3/dist-packages
 #   - the man pages and bash completion are installed, and completion completes an option
+#   - every installed program is executable and has its man page and completion; the build
+#     tree's own tools (the suite, its report, the benchmarks) are not installed
 #   install_test.sh BUILD_DIR SOURCE_DIR OUT_DIR
 set -u
 build=$1
@@ -45,10 +47,22 @@ for tool in vmassd vmass-replay vmass-can vmass-plot; do
   [ -s "$prefix/share/man/man1/$tool.1" ] || fail "no man page for $tool"
   [ -s "$prefix/share/bash-completion/completions/$tool" ] || fail "no completion for $tool"
 done
+installed=0
+for program in "$prefix"/bin/*; do
+  tool=$(basename "$program")
+  [ -x "$program" ] || fail "$tool installed without its run bit: $(ls -l "$program")"
+  [ -s "$prefix/share/man/man1/$tool.1" ] || fail "no man page for the installed $tool"
+  [ -s "$prefix/share/bash-completion/completions/$tool" ] || fail "no completion for $tool"
+  installed=$((installed + 1))
+done
+for tool in vmass-suite vmass-accuracy-report vmass-bench vmass-bench-daemon vmass-soak; do
+  [ ! -e "$prefix/bin/$tool" ] || fail "$tool is a build-tree tool, installed"
+done
+[ "$installed" -ge 12 ] || fail "$installed programs installed: $(ls "$prefix/bin")"
 grep -q "replay a CAN log" "$prefix/share/man/man1/vmassd.1" || fail "vmassd.1 lacks --replay"
 words=$(PATH=$prefix/bin:$PATH bash -c '
   . "$1/share/bash-completion/completions/vmass-replay"
   COMP_WORDS=(vmass-replay --tr); COMP_CWORD=1; _vmass_complete; echo "${COMPREPLY[*]}"' \
   sh "$prefix")
 [ "$words" = "--truth" ] || fail "completion of 'vmass-replay --tr': '$words'"
-echo "ok: man pages and bash completion"
+echo "ok: $installed programs, each executable with its man page and bash completion"

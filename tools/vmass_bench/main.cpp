@@ -9,9 +9,12 @@
 // block; default vw_mqb_inputs.yaml beside this file) gives N random frames (seed S; see
 // bench_frames.hpp); --frames-log writes them as a candump -l log for cantools_bench.py (the
 // ratio of docs/performance.md). --config and --samples (default: the golden paper_exp2 drive)
-// feed the pipeline tick. Exit codes: 0 ok, 2 an input that cannot be read.
+// feed the pipeline tick. --version prints the name and version; --help our options, then
+// Google Benchmark's. Exit codes: 0 ok, 2 a usage error (an option neither takes, a bad value)
+// or an input that cannot be read.
 #include <benchmark/benchmark.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -25,6 +28,7 @@
 #include "format_benchmarks.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/csv/samples_csv.hpp"
+#include "vmass/version.hpp"
 
 namespace {
 
@@ -62,19 +66,79 @@ std::optional<std::string> take_option(int& argc, char** argv, const std::string
   return std::nullopt;
 }
 
-Options parse_options(int& argc, char** argv) {
-  Options o;
-  for (auto [name, field] : {std::pair{"--dbc", &o.dbc},
-                             {"--inputs", &o.inputs},
-                             {"--config", &o.config},
-                             {"--samples", &o.samples},
-                             {"--frames-log", &o.frames_log}}) {
+/// `text` as a whole number in [low, high], or nullopt.
+std::optional<long> whole_number(const std::string& text, long low, long high) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || v < low || v > high) return std::nullopt;
+  return v;
+}
+
+/// Our options out of argv; "" or why they are wrong.
+std::string parse_options(int& argc, char** argv, Options* o) {
+  for (auto [name, field] : {std::pair{"--dbc", &o->dbc},
+                             {"--inputs", &o->inputs},
+                             {"--config", &o->config},
+                             {"--samples", &o->samples},
+                             {"--frames-log", &o->frames_log}}) {
     if (auto v = take_option(argc, argv, name)) *field = *v;
   }
-  if (auto v = take_option(argc, argv, "--frames")) o.frames = std::atoi(v->c_str());
-  if (auto v = take_option(argc, argv, "--seed"))
-    o.seed = static_cast<unsigned>(std::atoi(v->c_str()));
-  return o;
+  if (auto v = take_option(argc, argv, "--frames")) {
+    const auto n = whole_number(*v, 1, 100'000'000);
+    if (!n) return "--frames " + *v + ": not a whole number in [1, 100000000]";
+    o->frames = static_cast<int>(*n);
+  }
+  if (auto v = take_option(argc, argv, "--seed")) {
+    const auto n = whole_number(*v, 0, 4'294'967'295);
+    if (!n) return "--seed " + *v + ": not a whole number in [0, 4294967295]";
+    o->seed = static_cast<unsigned>(*n);
+  }
+  return "";
+}
+
+constexpr const char* kUsage =
+    "Usage: vmass-bench [OPTIONS] [Google Benchmark flags]\n"
+    "vmass-bench: the micro-benchmarks of docs/performance.md (Google Benchmark)\n\n"
+    "Options:\n"
+    "  --dbc FILE          the DBC whose frames are decoded (default tests/data/dbc/vw_mqb.dbc)\n"
+    "  --inputs YAML       its can.inputs mapping (default vw_mqb_inputs.yaml)\n"
+    "  --frames N          random frames to decode (default 20000)\n"
+    "  --seed S            their seed (default 1)\n"
+    "  --config FILE       the config of the pipeline tick (default: the golden paper_exp2)\n"
+    "  --samples CSV       the drive it ticks on (default: the golden paper_exp2)\n"
+    "  --frames-log PATH   also write the frames as a candump -l log (cantools_bench.py)\n"
+    "  --version           print the program's name and version, then exit\n"
+    "  --help              print this help, then Google Benchmark's, and exit\n\n";
+
+/// --help, --version and every option: nullopt to go on, else the exit code. What is left of
+/// argv after our options goes to Google Benchmark, which must know all of it.
+std::optional<int> parse_command_line(int& argc, char** argv, Options* o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--version") {
+      std::cout << "vmass-bench " << vmass::kVersion << "\n";
+      return 0;
+    }
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage << std::flush;
+      char help[] = "--help";
+      char* args[] = {argv[0], help, nullptr};
+      int n = 2;
+      benchmark::Initialize(&n, args);  // prints Google Benchmark's flags and exits 0
+      return 0;
+    }
+  }
+  if (const std::string error = parse_options(argc, argv, o); !error.empty()) {
+    std::cerr << "vmass-bench: " << error << "\n";
+    return 2;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
+    std::cerr << "vmass-bench: --help lists the options\n";
+    return 2;
+  }
+  return std::nullopt;
 }
 
 /// The DBC, its frames and the mapping onto it; "" or why not.
@@ -117,7 +181,8 @@ std::string load_core_data(const Options& o, bench::CoreBenchData* data) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse_options(argc, argv);
+  Options o;
+  if (const auto code = parse_command_line(argc, argv, &o)) return *code;
   bench::DecodeBenchData decode;
   bench::CoreBenchData core;
   std::string error = load_decode_data(o, &decode);
@@ -131,7 +196,6 @@ int main(int argc, char** argv) {
             << decode.frames.messages_used << " messages (" << decode.frames.messages_left_out
             << " left out: overlapping signals), " << decode.frames.signals_per_frame
             << " signals per frame, " << decode.mapped_frames.size() << " of mapped messages\n";
-  benchmark::Initialize(&argc, argv);
   bench::register_decode_benchmarks(decode);
   bench::register_core_benchmarks(core);
   bench::register_format_benchmarks();

@@ -34,6 +34,7 @@
 
 #include "bus_feed.hpp"
 #include "daemon_process.hpp"
+#include "exit_code.hpp"
 #include "proc_stats.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
@@ -215,12 +216,8 @@ int parse(int argc, char** argv, Options* o) {
   app.add_option("--daemon-log", o->daemon_log, "the daemon's standard error");
   app.add_option("command", o->command, "the daemon command (replays its standard input)")
       ->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  return -1;
+  const auto code = vmass::tools::parse_command_line(app, argc, argv);
+  return code ? *code : -1;
 }
 
 void print_report(const Options& o, const SoakStream& stream, const FeedResult& fed,

@@ -16,6 +16,11 @@
 //                  were not finite (exit 1 when a field was not finite or nothing arrived)
 //   --timeout S    give up (exit 1) when nothing arrived within S seconds (default 10 for
 //                  --once/--count, none otherwise)
+//
+// The rates in the report are those of the last 5 s (three status periods when longer:
+// recent_rate.hpp). When no estimate has arrived for three status periods (3 s at least), the
+// report's second line says so ("no estimate for 12 s: is vmassd running?"); --once and
+// --count then end with exit 1. --rates measures over its whole listening time.
 #include <unistd.h>
 
 #include <chrono>
@@ -32,6 +37,7 @@
 
 #include "exit_code.hpp"
 #include "monitor_report.hpp"
+#include "recent_rate.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/service/service_config.hpp"
 
@@ -69,18 +75,32 @@ int nonfinite(const vmass::status_t& s) {
   return n;
 }
 
+double seconds_between(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double>(to - from).count();
+}
+
 struct ChannelStats {
+  explicit ChannelStats(double window_s) : recent(window_s) {}
   long count = 0;
   long nonfinite_fields = 0;
   Clock::time_point first, last;
+  vmass::monitor::RecentRate recent;  ///< the report's rate; seconds since the monitor started
+  /// Since the first message (--rates).
   double rate_hz() const {
-    const double span = std::chrono::duration<double>(last - first).count();
+    const double span = seconds_between(first, last);
     return count > 1 && span > 0.0 ? static_cast<double>(count - 1) / span : 0.0;
   }
 };
 
 class Monitor {
  public:
+  /// `status_period_s`: vmassd's (lcm.status_period_s), which sets the rate window and how long
+  /// a silence means the daemon is gone.
+  explicit Monitor(double status_period_s)
+      : status_period_s_(status_period_s),
+        estimates_(vmass::monitor::rate_window_s(status_period_s)),
+        statuses_(vmass::monitor::rate_window_s(status_period_s)) {}
+
   void on_estimate(const lcm::ReceiveBuffer*, const std::string&,
                    const vmass::mass_estimate_t* msg) {
     estimate_ = *msg;
@@ -91,26 +111,49 @@ class Monitor {
     record(&statuses_, nonfinite(*msg));
   }
 
-  /// What was received last, laid out for 80 columns (monitor_report.hpp).
-  std::string report(const std::string& url) const {
-    return vmass::monitor::monitor_report(url, estimates_.rate_hz(), statuses_.rate_hz(),
-                                          estimate_ ? &*estimate_ : nullptr,
-                                          status_ ? &*status_ : nullptr);
+  /// What was received last, laid out for 80 columns (monitor_report.hpp), with the rates of
+  /// the last seconds and a warning when the estimates fell silent.
+  std::string report(const std::string& url) {
+    const double now = since_start(Clock::now());
+    return vmass::monitor::monitor_report(
+        url, estimates_.recent.rate_hz(now), statuses_.recent.rate_hz(now),
+        estimate_ ? &*estimate_ : nullptr, status_ ? &*status_ : nullptr, silence(now));
   }
+
+  /// How long the channels have been silent at `now_s` (seconds since the start).
+  vmass::monitor::Silence silence(double now_s) const {
+    vmass::monitor::Silence s;
+    s.estimate_s = estimates_.count > 0 ? estimates_.recent.silent_s(now_s) : now_s;
+    s.status_s = statuses_.recent.silent_s(now_s);
+    s.limit_s =
+        vmass::monitor::silence_limit_s(status_period_s_, estimates_.recent.mean_interval_s());
+    return s;
+  }
+
+  /// Estimates arrived, then none for longer than the silence limit: vmassd is gone.
+  std::string gone_message() const {
+    if (estimates_.count == 0) return "";
+    return vmass::monitor::silence_message(silence(since_start(Clock::now())));
+  }
+
+  double since_start(Clock::time_point t) const { return seconds_between(start_, t); }
 
   const ChannelStats& estimates() const { return estimates_; }
   const ChannelStats& statuses() const { return statuses_; }
   bool complete() const { return estimate_.has_value() && status_.has_value(); }
 
  private:
-  static void record(ChannelStats* c, int bad) {
+  void record(ChannelStats* c, int bad) {
     const Clock::time_point now = Clock::now();
     if (c->count == 0) c->first = now;
     c->last = now;
     ++c->count;
     c->nonfinite_fields += bad;
+    c->recent.add(since_start(now));
   }
 
+  Clock::time_point start_ = Clock::now();
+  double status_period_s_;
   std::optional<vmass::mass_estimate_t> estimate_;
   std::optional<vmass::status_t> status_;
   ChannelStats estimates_, statuses_;
@@ -189,8 +232,8 @@ Mode mode_for(Options* o) {
 }
 
 /// Handles LCM messages and prints reports until the run ends. An exit code when it ended on
-/// a timeout (1), nullopt when it ended as asked.
-std::optional<int> watch(lcm::LCM& lcm, const Monitor& monitor, const Options& o, const Mode& m,
+/// a timeout or on vmassd's silence (1), nullopt when it ended as asked.
+std::optional<int> watch(lcm::LCM& lcm, Monitor& monitor, const Options& o, const Mode& m,
                          const vmass::service::LcmSettings& settings) {
   const Clock::time_point start = Clock::now();
   Clock::time_point next_draw = start;
@@ -213,6 +256,13 @@ std::optional<int> watch(lcm::LCM& lcm, const Monitor& monitor, const Options& o
       std::fputs(monitor.report(settings.url).c_str(), stdout);
       return 1;
     }
+    if (o.once || o.count > 0) {
+      if (const std::string gone = monitor.gone_message(); !gone.empty()) {
+        std::fprintf(stderr, "vmass-monitor: %s\n", gone.c_str());
+        std::fputs(monitor.report(settings.url).c_str(), stdout);
+        return 1;
+      }
+    }
     if (m.periodic && now >= next_draw && (m.ansi || anything)) {
       const std::string text = monitor.report(settings.url);
       if (m.ansi) {
@@ -227,7 +277,8 @@ std::optional<int> watch(lcm::LCM& lcm, const Monitor& monitor, const Options& o
   return std::nullopt;
 }
 
-/// --rates: messages and rates per channel; 0 when both arrived, finite.
+/// --rates: messages and rates per channel over the whole listening time; 0 when both arrived,
+/// finite.
 int print_rates(const Monitor& monitor, const vmass::service::LcmSettings& settings) {
   const ChannelStats& e = monitor.estimates();
   const ChannelStats& s = monitor.statuses();
@@ -252,7 +303,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "vmass-monitor: cannot open LCM at '%s'\n", settings.url.c_str());
     return vmass::tools::kExitFailure;
   }
-  Monitor monitor;
+  Monitor monitor(settings.status_period_s);
   lcm.subscribe(settings.estimate_channel, &Monitor::on_estimate, &monitor);
   lcm.subscribe(settings.status_channel, &Monitor::on_status, &monitor);
   std::signal(SIGINT, on_signal);

@@ -107,10 +107,21 @@ std::string wrap_items(std::string_view label, const std::vector<std::string>& i
   return out + "\n";
 }
 
+std::string silence_message(const Silence& silence) {
+  if (silence.limit_s <= 0.0 || silence.estimate_s <= silence.limit_s) return "";
+  std::string out = format("no estimate for %.0f s: is vmassd running?", silence.estimate_s);
+  if (silence.status_s >= 0.0) out += format(" (last status %.0f s ago)", silence.status_s);
+  return out;
+}
+
 std::string monitor_report(const std::string& url, double estimate_hz, double status_hz,
-                           const vmass::mass_estimate_t* estimate, const vmass::status_t* status) {
+                           const vmass::mass_estimate_t* estimate, const vmass::status_t* status,
+                           const Silence& silence) {
   std::string out = wrap_items("vmass-monitor", {url, format("estimates %.1f Hz", estimate_hz),
                                                  format("status %.2f Hz", status_hz)});
+  if (const std::string message = silence_message(silence); !message.empty()) {
+    out += wrap_items("SILENT", {message});
+  }
   out += estimate ? estimate_lines(*estimate) : wrap_items("mass", {"(no estimate received)"});
   out += status ? status_lines(*status) : wrap_items("daemon", {"(no status received)"});
   return out;

@@ -22,8 +22,21 @@ constexpr std::size_t kReportWidth = 80;
 std::string wrap_items(std::string_view label, const std::vector<std::string>& items,
                        std::size_t width = kReportWidth);
 
-/// The whole report; null messages print as "(no ... received)".
+/// How long vmassd has been silent, for the report's warning line.
+struct Silence {
+  double estimate_s = 0.0;  ///< since the last estimate (since the monitor started, before one)
+  double status_s = -1.0;   ///< since the last status; negative: none received
+  double limit_s = 0.0;     ///< estimates silent for longer: the warning (0: never)
+};
+
+/// "no estimate for 12 s: is vmassd running?" (with the last status's age), or "" while the
+/// estimates arrive.
+std::string silence_message(const Silence& silence);
+
+/// The whole report; null messages print as "(no ... received)". When the estimates have been
+/// silent for longer than silence.limit_s, a warning line under the first says so.
 std::string monitor_report(const std::string& url, double estimate_hz, double status_hz,
-                           const vmass::mass_estimate_t* estimate, const vmass::status_t* status);
+                           const vmass::mass_estimate_t* estimate, const vmass::status_t* status,
+                           const Silence& silence = {});
 
 }  // namespace vmass::monitor

@@ -17,7 +17,9 @@
 //
 // --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
 // --series-dir DIR writes per-tick CSVs (10 Hz) of the runs named by --series RUN,... where
-// RUN is VEHICLE:SCENARIO:SEED. Exit codes: 0 ok, 1 a run failed, 2 usage or input error.
+// RUN is VEHICLE:SCENARIO:SEED. --version prints the name and version. Exit codes: 0 ok, 1 a
+// run failed, 2 usage or input error. Not installed: it runs in the build tree, beside
+// vmass-sim and vmass-accuracy-report (scripts/accuracy-suite.sh).
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -33,6 +35,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "exit_code.hpp"
 #include "lifetime_run.hpp"
 #include "suite_run.hpp"
 #include "vmass/sim/population.hpp"
@@ -45,8 +48,8 @@ using vmass::sim::Realism;
 
 namespace {
 
-constexpr int kExitFailure = 1;
-constexpr int kExitUsage = 2;
+using vmass::tools::kExitFailure;
+using vmass::tools::kExitUsage;
 
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> out;
@@ -346,14 +349,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", o.out, "JSON lines output");
   app.add_flag("--list-scenarios", list, "list the population scenarios and exit");
   app.add_flag("--population-hash", hash, "print the population definition's hash and exit");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitUsage;
-  }
+  if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   if (list) {
     for (const auto& n : vmass::sim::population_scenario_names()) {
       std::cout << n << "  " << vmass::sim::population_scenario_description(n) << "\n";
