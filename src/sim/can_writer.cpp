@@ -3,12 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <optional>
 #include <sstream>
 
-#include "text_file.hpp"
-#include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
 #include "vmass/core/constants.hpp"
@@ -187,24 +184,6 @@ std::string make_can_frames(const SimulationResult& result, std::vector<can::Can
     }
   }
   return "";
-}
-
-std::string write_can_files(const SimulationResult& result, const std::string& dir) {
-  if (auto m = detail::write_text_file(dir + "/vehicle.dbc", std::string(demo_vehicle_dbc()));
-      !m.empty()) {
-    return m;
-  }
-  std::vector<can::CanFrame> frames;
-  if (auto m = make_can_frames(result, &frames); !m.empty()) return m;
-  std::ostringstream log;
-  can::CandumpWriter writer(log);
-  for (const can::CanFrame& f : frames) writer.write(f, "can0");
-  if (auto m = detail::write_text_file(dir + "/drive.log", log.str()); !m.empty()) return m;
-  const std::string config = dir + "/config.yaml";
-  std::ofstream out(config, std::ios::binary | std::ios::app);
-  out << demo_can_config_yaml("vehicle.dbc");
-  out.close();
-  return out ? "" : "cannot append the can: section to " + config;
 }
 
 }  // namespace vmass::sim

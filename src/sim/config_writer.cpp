@@ -4,7 +4,6 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "text_file.hpp"
 #include "vmass/config/estimator_section.hpp"
 #include "vmass/config/suspension_section.hpp"
 #include "vmass/config/vehicle_section.hpp"
@@ -79,8 +78,7 @@ void write_config_yaml(std::ostream& os, const PipelineParams& c,
   os << e.c_str() << '\n';
 }
 
-std::string write_config_file(const SimulationResult& result, const std::string& dir,
-                              const CalibrationErrors& errors) {
+std::string demo_config_yaml(const SimulationResult& result, const CalibrationErrors& errors) {
   const TrueVehicle& v = result.vehicle;
   const PipelineParams c = make_config_params(v, result.initial_mass, result.tick_rate_hz, errors);
   const double true_c = v.rear_right_suspension.stiffness_n_per_m;
@@ -100,7 +98,7 @@ std::string write_config_file(const SimulationResult& result, const std::string&
   };
   std::ostringstream os;
   write_config_yaml(os, c, header);
-  return detail::write_text_file(dir + "/config.yaml", os.str());
+  return os.str();
 }
 
 }  // namespace vmass::sim

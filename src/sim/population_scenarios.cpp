@@ -5,6 +5,7 @@
 #include <functional>
 #include <utility>
 
+#include "paper_roads.hpp"
 #include "seats.hpp"
 #include "vmass/sim/random_stream.hpp"
 
@@ -171,13 +172,6 @@ void place_items(std::vector<LoadItem>& items, const TrueVehicle& v, Realism rea
   for (LoadItem& it : items) it = {it.mass_kg, v.empty.cg_x_m, 0.0, v.empty.cg_z_m};
 }
 
-// --- roads ---------------------------------------------------------------------------------
-
-PiecewiseLinear slope_percent(std::vector<PiecewiseLinear::Point> pts) {
-  for (auto& p : pts) p.y = grade_from_percent(p.y);
-  return PiecewiseLinear(std::move(pts));
-}
-
 // --- drives --------------------------------------------------------------------------------
 
 void paper_exp1(ProfileBuilder& b) {
@@ -289,20 +283,7 @@ void exp1(NoiseSet eps, const DrawnVehicle& d, RandomStream& rng, ProfileBuilder
   paper_exp1(b);
   out.duration_s = std::max(200.0, b.time() + 5.0);
   run.bus.eps = eps;
-  run.physics.road.grade_rad = slope_percent({{0, 0},
-                                              {30, 0},
-                                              {80, 3},
-                                              {200, 3},
-                                              {300, -2},
-                                              {380, -2},
-                                              {520, 4},
-                                              {650, 4},
-                                              {750, 0},
-                                              {880, -3},
-                                              {1100, -3},
-                                              {1200, 0},
-                                              {1400, 2},
-                                              {1600, 0}});
+  run.physics.road = paper_exp1_road();
 }
 
 void exp2(NoiseSet eps, const DrawnVehicle& d, RandomStream& rng, ProfileBuilder& b,
@@ -311,17 +292,7 @@ void exp2(NoiseSet eps, const DrawnVehicle& d, RandomStream& rng, ProfileBuilder
   paper_exp2(b);
   out.duration_s = std::max(200.0, b.time() + 5.0);
   run.bus.eps = eps;
-  run.physics.road.grade_rad = slope_percent({{0, 0},
-                                              {50, 0},
-                                              {200, 1.5},
-                                              {500, 0},
-                                              {800, -1},
-                                              {1100, 0},
-                                              {1500, 1},
-                                              {1900, 1},
-                                              {2200, 0}});
-  run.physics.road.bank_rad =
-      PiecewiseLinear({{0, 0}, {1200, 0}, {1250, 0.02}, {1450, 0.02}, {1500, 0}});
+  run.physics.road = paper_exp2_road();
 }
 
 void exp1_eps1(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
@@ -532,7 +503,9 @@ std::string make_population_run(const DrawnVehicle& vehicle, std::string_view sc
   // its vectors as maybe uninitialised (a false positive).
   PopulationRun run;
   run.scenario = entry->name;
-  run.realism = realism;
+  run.simulation.seed = seed;
+  run.simulation.realism = realism;
+  run.simulation.record_ecu_trace = true;  // the bus samples it at each message's own times
   run.bus.realism = realism;
   run.bus.seed = seed;
   Scenario& s = run.physics;

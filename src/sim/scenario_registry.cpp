@@ -3,6 +3,7 @@
 #include <functional>
 #include <utility>
 
+#include "paper_roads.hpp"
 #include "vmass/sim/scenario.hpp"
 #include "vmass/sim/static_ballast.hpp"
 
@@ -16,12 +17,6 @@ constexpr double kKmh = 1.0 / 3.6;
 // Points (x, y) with y scaled (units to SI).
 PiecewiseLinear scaled(std::vector<PiecewiseLinear::Point> pts, double scale) {
   for (auto& p : pts) p.y *= scale;
-  return PiecewiseLinear(std::move(pts));
-}
-
-// Slope profile in percent over distance -> grade in rad.
-PiecewiseLinear slope_percent(std::vector<PiecewiseLinear::Point> pts) {
-  for (auto& p : pts) p.y = grade_from_percent(p.y);
   return PiecewiseLinear(std::move(pts));
 }
 
@@ -59,18 +54,7 @@ Scenario paper_exp1() {
               {118, 15}, {127, 35}, {129, 35}, {137, 50}, {149, 50}, {157, 35}, {170, 35},
               {172, 35}, {179, 10}, {182, 0},  {200, 0}},
              kKmh);
-  s.road.grade_rad = slope_percent({{0, 0},
-                                    {30, 0},
-                                    {80, 3},
-                                    {200, 3},
-                                    {300, -2},
-                                    {380, -2},
-                                    {520, 4},
-                                    {650, 4},
-                                    {750, 0},
-                                    {880, -3},
-                                    {1100, -3},
-                                    {1200, 0}});
+  s.road = paper_exp1_road();
   return s;
 }
 
@@ -115,16 +99,7 @@ Scenario paper_exp2() {
       {100.0, 122.0, 25.0 * kDeg, 0.25},  // slalom at 18 m/s
       {157.0, 173.0, 35.0 * kDeg, 0.40},  // slalom at 15 m/s
   };
-  s.road.grade_rad = slope_percent({{0, 0},
-                                    {50, 0},
-                                    {200, 1.5},
-                                    {500, 0},
-                                    {800, -1},
-                                    {1100, 0},
-                                    {1500, 1},
-                                    {1900, 1},
-                                    {2200, 0}});
-  s.road.bank_rad = PiecewiseLinear({{0, 0}, {1200, 0}, {1250, 0.02}, {1450, 0.02}, {1500, 0}});
+  s.road = paper_exp2_road();
   return s;
 }
 

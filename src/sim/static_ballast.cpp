@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "text_file.hpp"
 #include "vmass/config/suspension_section.hpp"
 
 namespace vmass::sim {
@@ -87,9 +86,7 @@ BallastTruth ballast_truth(const SimulationResult& result, const BallastSchedule
   return t;
 }
 
-std::string write_ballast_files(const SimulationResult& result, const std::string& dir,
-                                const BallastSchedule& schedule) {
-  if (auto m = schedule.validate(); !m.empty()) return m;
+std::string ballast_csv(const SimulationResult& result, const BallastSchedule& schedule) {
   std::string csv = "added_mass_kg,rear_right_deflection_mm\n";
   for (int k = 0; k <= schedule.steps; ++k) {
     const auto [from_s, to_s] = schedule.written_window(k);
@@ -105,8 +102,10 @@ std::string write_ballast_files(const SimulationResult& result, const std::strin
       csv += mass + "," + buf + "\n";
     }
   }
-  if (auto m = detail::write_text_file(dir + "/ballast.csv", csv); !m.empty()) return m;
+  return csv;
+}
 
+std::string suspension_truth_yaml(const SimulationResult& result, const BallastSchedule& schedule) {
   const BallastTruth t = ballast_truth(result, schedule);
   std::string y;
   y += "# True rear-right suspension of the simulated car (static_ballast), in the deflection\n";
@@ -135,7 +134,7 @@ std::string write_ballast_files(const SimulationResult& result, const std::strin
     y += "  - {added_mass_kg: " + num(t.added_mass_kg[k]) +
          ", deflection_m: " + num(t.mean_deflection_m[k]) + "}\n";
   }
-  return detail::write_text_file(dir + "/suspension_truth.yaml", y);
+  return y;
 }
 
 }  // namespace vmass::sim

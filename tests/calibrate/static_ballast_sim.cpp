@@ -40,7 +40,7 @@ BallastRun simulate_static_ballast(std::uint64_t seed) {
   return run;
 }
 
-// The per-sample rows of ballast.csv, built as write_ballast_files() writes them.
+// The per-sample rows of ballast.csv, built as ballast_csv() writes them.
 std::vector<BallastSample> ballast_rows(const BallastRun& run) {
   const sim::BallastSchedule schedule;
   std::vector<BallastSample> rows;

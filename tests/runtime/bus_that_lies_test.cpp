@@ -20,8 +20,8 @@
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/sim/population.hpp"
+#include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
-#include "vmass/sim/population_writer.hpp"
 
 namespace vmass {
 namespace {
@@ -43,12 +43,11 @@ Bus simulate(const std::string& vehicle_id, const std::string& scenario, const f
   EXPECT_TRUE(sim::parse_vehicle_id(vehicle_id, &d, &error)) << error;
   sim::PopulationRun run;
   EXPECT_EQ(sim::make_population_run(d, scenario, 1, sim::Realism::all(), &run), "");
-  sim::SimulationResult result;
-  EXPECT_EQ(sim::simulate_population_run(d, run, sim::Knowledge::kKnownScale, &result, &bus.frames),
+  sim::DriveOutput drive;
+  EXPECT_EQ(sim::record_drive(sim::population_drive(d, run, sim::Knowledge::kKnownScale), &drive),
             "");
-  EXPECT_EQ(sim::write_population_files(d, run, sim::Knowledge::kKnownScale, result, bus.frames,
-                                        dir.string()),
-            "");
+  EXPECT_EQ(sim::write_drive_files(drive, dir.string()), "");
+  bus.frames = drive.handover.frames;
   std::ifstream dbc(dir / "vehicle.dbc");
   std::stringstream text;
   text << dbc.rdbuf();

@@ -16,8 +16,8 @@
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/sim/population.hpp"
+#include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
-#include "vmass/sim/population_writer.hpp"
 
 namespace vmass {
 namespace {
@@ -58,13 +58,11 @@ Drive simulate(const std::string& vehicle_id, const std::string& scenario) {
   EXPECT_TRUE(sim::parse_vehicle_id(vehicle_id, &d, &error)) << error;
   sim::PopulationRun run;
   EXPECT_EQ(sim::make_population_run(d, scenario, 1, sim::Realism::all(), &run), "");
-  sim::SimulationResult result;
+  sim::DriveOutput recorded;
   EXPECT_EQ(
-      sim::simulate_population_run(d, run, sim::Knowledge::kKnownScale, &result, &drive.frames),
-      "");
-  EXPECT_EQ(sim::write_population_files(d, run, sim::Knowledge::kKnownScale, result, drive.frames,
-                                        dir.string()),
-            "");
+      sim::record_drive(sim::population_drive(d, run, sim::Knowledge::kKnownScale), &recorded), "");
+  EXPECT_EQ(sim::write_drive_files(recorded, dir.string()), "");
+  drive.frames = recorded.handover.frames;
   ConfigLoad config = load_config((dir / "config.yaml").string());
   EXPECT_TRUE(config.ok()) << config.error;
   if (config.ok()) {

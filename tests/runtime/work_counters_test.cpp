@@ -17,8 +17,8 @@
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 #include "vmass/sim/population.hpp"
+#include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
-#include "vmass/sim/population_writer.hpp"
 
 namespace vmass {
 namespace {
@@ -38,13 +38,11 @@ Count count_drive(const std::string& vehicle_id, const std::string& scenario) {
   EXPECT_TRUE(sim::parse_vehicle_id(vehicle_id, &d, &error)) << error;
   sim::PopulationRun run;
   EXPECT_EQ(sim::make_population_run(d, scenario, 1, sim::Realism::all(), &run), "");
-  sim::SimulationResult result;
-  std::vector<can::CanFrame> frames;
-  EXPECT_EQ(sim::simulate_population_run(d, run, sim::Knowledge::kKnownScale, &result, &frames),
+  sim::DriveOutput drive;
+  EXPECT_EQ(sim::record_drive(sim::population_drive(d, run, sim::Knowledge::kKnownScale), &drive),
             "");
-  EXPECT_EQ(sim::write_population_files(d, run, sim::Knowledge::kKnownScale, result, frames,
-                                        dir.string()),
-            "");
+  EXPECT_EQ(sim::write_drive_files(drive, dir.string()), "");
+  const std::vector<can::CanFrame>& frames = drive.handover.frames;
   Count count;
   const ConfigLoad config = load_config((dir / "config.yaml").string());
   EXPECT_TRUE(config.ok()) << config.error;

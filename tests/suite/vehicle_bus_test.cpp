@@ -18,8 +18,8 @@
 #include "vmass/signals/signal_table.hpp"
 #include "vmass/sim/datasheet_config.hpp"
 #include "vmass/sim/population.hpp"
+#include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
-#include "vmass/sim/population_writer.hpp"
 #include "vmass/sim/vehicle_bus.hpp"
 
 namespace vmass::sim {
@@ -62,11 +62,10 @@ TEST(VehicleBus, RoundTripThroughTheProductsLoadersGivesTheEcuSignals) {
     PopulationRun run;
     ASSERT_EQ(make_population_run(d, "paper_exp2_eps1", 1, Realism::none(), &run), "");
     run.bus.eps = NoiseSet::kNone;
-    SimulationResult result;
-    std::vector<can::CanFrame> frames;
-    ASSERT_EQ(simulate_population_run(d, run, Knowledge::kKnownScale, &result, &frames), "");
-    ASSERT_EQ(write_population_files(d, run, Knowledge::kKnownScale, result, frames, dir.string()),
-              "");
+    DriveOutput drive;
+    ASSERT_EQ(record_drive(population_drive(d, run, Knowledge::kKnownScale), &drive), "");
+    ASSERT_EQ(write_drive_files(drive, dir.string()), "");
+    const SimulationResult& result = drive.result;
     const ConfigLoad config = load_config((dir / "config.yaml").string());
     ASSERT_TRUE(config.ok()) << d.id << ": " << config.error;
     const signals::CanInputsLoad can = signals::load_can_inputs(*config.config);

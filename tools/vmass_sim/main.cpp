@@ -6,18 +6,20 @@
 //             [--knowledge known_scale|datasheet_scale] --out DIR
 //   vmass-sim --list-vehicles N [--first-seed S]
 //
-// With --vehicle, the drive is one of the vehicle population's (population_scenarios.hpp) on a
-// drawn vehicle (population.hpp), with every real-world effect on unless --realism says
-// otherwise, and DIR gets that vehicle's own DBC, its bus log and the config its engineer writes
-// from the datasheet (population_writer.hpp).
+// Both are drives of the simulator's one front end (vmass/sim/drive.hpp). Without --vehicle, the
+// demo car on a named scenario (demo_drive.hpp). With --vehicle, the drive is one of the vehicle
+// population's (population_scenarios.hpp) on a drawn vehicle (population.hpp), with every
+// real-world effect on unless --realism says otherwise, and DIR gets that vehicle's own DBC, its
+// bus log and the config its engineer writes from the datasheet (population_drive.hpp).
 //
 // Writes DIR/samples.csv, DIR/truth.csv, DIR/config.yaml (docs/formats.md), and the same drive
 // on CAN: DIR/drive.log (candump -l) with DIR/vehicle.dbc, which config.yaml's `can:` section
-// maps (vmass/sim/can_writer.hpp). The same scenario, seed and noise give byte-identical files.
+// maps. The same scenario, seed and noise give byte-identical files.
 // Exit codes: 0 ok, 2 usage or I/O error.
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <system_error>
 
@@ -25,15 +27,13 @@
 
 #include "exit_code.hpp"
 
-#include "vmass/sim/can_writer.hpp"
-#include "vmass/sim/config_writer.hpp"
-#include "vmass/sim/csv_writer.hpp"
+#include "vmass/sim/demo_drive.hpp"
+#include "vmass/sim/drive.hpp"
 #include "vmass/sim/population.hpp"
+#include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
-#include "vmass/sim/population_writer.hpp"
 #include "vmass/sim/scenario.hpp"
 #include "vmass/sim/simulator.hpp"
-#include "vmass/sim/static_ballast.hpp"
 
 namespace {
 
@@ -56,6 +56,13 @@ std::string joined_population_names() {
     s += (s.empty() ? "" : ", ") + n;
   }
   return s;
+}
+
+// Simulates the drive and writes its files into dir. "" or a message.
+std::string record_and_write(const vmass::sim::DriveSpec& spec, const std::string& dir,
+                             vmass::sim::DriveOutput* drive) {
+  if (auto m = vmass::sim::record_drive(spec, drive); !m.empty()) return m;
+  return vmass::sim::write_drive_files(*drive, dir);
 }
 
 struct PopulationArgs {
@@ -84,22 +91,18 @@ int run_population(const PopulationArgs& a) {
   std::error_code ec;
   std::filesystem::create_directories(a.out_dir, ec);
   if (ec) return fail("cannot create output directory " + a.out_dir + ": " + ec.message());
-  vmass::sim::SimulationResult result;
-  std::vector<vmass::can::CanFrame> frames;
-  if (auto m = vmass::sim::simulate_population_run(vehicle, run, knowledge, &result, &frames);
+  vmass::sim::DriveOutput drive;
+  if (auto m = record_and_write(vmass::sim::population_drive(vehicle, run, knowledge), a.out_dir,
+                                &drive);
       !m.empty()) {
     return fail(m);
   }
-  if (auto m =
-          vmass::sim::write_population_files(vehicle, run, knowledge, result, frames, a.out_dir);
-      !m.empty()) {
-    return fail(m);
-  }
+  const vmass::sim::SimulationResult& result = drive.result;
   std::cout << "vmass-sim: " << vmass::sim::describe_vehicle(vehicle) << "\n"
             << "vmass-sim: " << run.scenario << ", seed " << a.seed << ", realism "
             << realism->describe() << ", " << vmass::sim::knowledge_name(knowledge) << ": "
-            << frames.size() << " frames, mass " << result.truth.front().mass_kg << " -> "
-            << result.truth.back().mass_kg << " kg; wrote " << a.out_dir
+            << drive.handover.frames.size() << " frames, mass " << result.truth.front().mass_kg
+            << " -> " << result.truth.back().mass_kg << " kg; wrote " << a.out_dir
             << "/{vehicle.dbc,drive.log,config.yaml,truth.csv,samples.csv}\n";
   return 0;
 }
@@ -156,11 +159,11 @@ int run_demo_scenario(const Args& a) {
   if (a.scenario_name.empty())
     return fail("--scenario NAME is required (one of: " + joined_names() + ")");
   if (a.out_dir.empty()) return fail("--out DIR is required");
-  const auto scenario = vmass::sim::find_scenario(a.scenario_name);
-  if (!scenario) {
+  std::optional<vmass::sim::DriveSpec> spec = vmass::sim::demo_drive(a.scenario_name);
+  if (!spec) {
     return fail("unknown scenario '" + a.scenario_name + "' (known: " + joined_names() + ")");
   }
-  vmass::sim::SimulationOptions options;
+  vmass::sim::SimulationOptions& options = spec->options;
   options.seed = a.seed;
   options.ideal_sensors = a.ideal;
   if (!a.noise_name.empty()) {
@@ -175,14 +178,9 @@ int run_demo_scenario(const Args& a) {
   if (!std::filesystem::is_directory(a.out_dir, ec)) {
     return fail("output path " + a.out_dir + " is not a directory");
   }
-  vmass::sim::SimulationResult result;
-  if (auto m = vmass::sim::simulate(*scenario, options, &result); !m.empty()) return fail(m);
-  if (auto m = vmass::sim::write_csv_files(result, a.out_dir); !m.empty()) return fail(m);
-  if (auto m = vmass::sim::write_config_file(result, a.out_dir); !m.empty()) return fail(m);
-  if (auto m = vmass::sim::write_can_files(result, a.out_dir); !m.empty()) return fail(m);
-  if (result.scenario == "static_ballast") {  // + ballast.csv, suspension_truth.yaml
-    if (auto m = vmass::sim::write_ballast_files(result, a.out_dir); !m.empty()) return fail(m);
-  }
+  vmass::sim::DriveOutput drive;
+  if (auto m = record_and_write(*spec, a.out_dir, &drive); !m.empty()) return fail(m);
+  const vmass::sim::SimulationResult& result = drive.result;
   std::cout << "vmass-sim: " << result.scenario << ", seed " << result.seed << ", noise "
             << vmass::sim::noise_set_name(result.noise) << ": " << result.samples.size()
             << " samples at " << result.tick_rate_hz << " Hz, mass " << result.truth.front().mass_kg

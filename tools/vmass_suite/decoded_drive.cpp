@@ -7,8 +7,6 @@
 #include "vmass/runtime/candump_frame_source.hpp"
 #include "vmass/runtime/tick_driver.hpp"
 #include "vmass/signals/signal_mapping.hpp"
-#include "vmass/sim/population_writer.hpp"
-#include "vmass/sim/vehicle_bus.hpp"
 
 namespace vmass::suite {
 
@@ -27,23 +25,19 @@ std::string without_dir(std::string message, const std::string& dir) {
   return message;
 }
 
-DecodedDrive decode_drive(const sim::DrawnVehicle& vehicle, const sim::PopulationRun& run,
-                          const sim::SimulationResult& result, sim::Knowledge knowledge,
+DecodedDrive decode_drive(const sim::VehicleTeam& team, const sim::SimulationResult& result,
                           const DecodeOptions& options, const std::string& work_dir) {
   DecodedDrive out;
-  const sim::VehicleBus bus(vehicle);
-  sim::BusOptions bus_options = run.bus;
-  bus_options.torque_report_scale *= sim::torque_report_scale(vehicle, knowledge);
-  std::vector<can::CanFrame> frames;
-  if (auto m = bus.encode(result, bus_options, &frames); !m.empty()) {
+  sim::Handover handover;
+  if (auto m = team.hand_over(result, &handover); !m.empty()) {
     out.error = "bus: " + m;
     return out;
   }
-  for (can::CanFrame& f : frames) f.time_us += options.time_offset_us;
-  std::string yaml = sim::datasheet_config_yaml(vehicle, run.realism, knowledge, "vehicle.dbc");
+  for (can::CanFrame& f : handover.frames) f.time_us += options.time_offset_us;
+  std::string yaml = handover.config_yaml;
   if (!options.estimator_yaml.empty()) yaml += "\n" + options.estimator_yaml + "\n";
   out.config_path = work_dir + "/config.yaml";
-  if (auto m = write_file(work_dir + "/vehicle.dbc", bus.dbc_text()); !m.empty()) {
+  if (auto m = write_file(work_dir + "/vehicle.dbc", handover.dbc_text); !m.empty()) {
     out.error = m;
     return out;
   }
@@ -61,7 +55,7 @@ DecodedDrive decode_drive(const sim::DrawnVehicle& vehicle, const sim::Populatio
     out.error = can.error;
     return out;
   }
-  std::string text = sim::candump_text(frames);
+  std::string text = sim::candump_text(handover.frames);
   if (options.keep_log_text) out.log_text = text;
   runtime::CanInputSource source(
       runtime::CandumpFrameSource::from_text(std::move(text), "drive.log"), can.inputs->decoder,

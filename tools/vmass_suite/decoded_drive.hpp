@@ -1,5 +1,6 @@
-// One simulated drive as the product reads it: the vehicle's bus under one kind of knowledge
-// turned into candump text, its DBC and the config its engineer writes put in a work directory
+// One simulated drive as the product reads it: what the vehicle's team hands over (its bus
+// under one kind of knowledge as candump text, its DBC and the config its engineer writes,
+// vmass/sim/population_drive.hpp) put in a work directory
 // and loaded with the real loaders (load_config, load_can_inputs), and the log decoded by the
 // runtime's tick driver, exactly as `vmass-replay --log` does. A config the loader refuses (an
 // input or section the estimator does not support yet) is reported as the run's error.
@@ -13,9 +14,7 @@
 
 #include "vmass/config/config.hpp"
 #include "vmass/core/sample.hpp"
-#include "vmass/sim/datasheet_config.hpp"
-#include "vmass/sim/population.hpp"
-#include "vmass/sim/population_scenarios.hpp"
+#include "vmass/sim/drive.hpp"
 #include "vmass/sim/simulator.hpp"
 
 namespace vmass::suite {
@@ -34,8 +33,7 @@ struct DecodeOptions {
   bool keep_log_text = false;
 };
 
-DecodedDrive decode_drive(const sim::DrawnVehicle& vehicle, const sim::PopulationRun& run,
-                          const sim::SimulationResult& result, sim::Knowledge knowledge,
+DecodedDrive decode_drive(const sim::VehicleTeam& team, const sim::SimulationResult& result,
                           const DecodeOptions& options, const std::string& work_dir);
 
 /// Writes a file; "" or "cannot write PATH".

@@ -12,6 +12,7 @@
 #include "vmass/service/pipeline_state.hpp"
 #include "vmass/service/state_store.hpp"
 #include "vmass/sim/lifetime.hpp"
+#include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
 #include "vmass/sim/simulator.hpp"
 
@@ -154,12 +155,8 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       out.error = m;
       return out;
     }
-    sim::SimulationOptions options;
-    options.seed = drive.seed;
-    options.realism = spec.realism;
-    options.record_ecu_trace = true;
     sim::SimulationResult result;
-    if (auto m = sim::simulate(run.physics, options, &result); !m.empty()) {
+    if (auto m = sim::simulate(run.physics, run.simulation, &result); !m.empty()) {
       out.error = m;
       return out;
     }
@@ -169,7 +166,8 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       sim::DrawnVehicle on_bus = vehicle;
       on_bus.sensors.deflection = v.deflection;
       DecodeOptions decode_options{spec.estimator_yaml, offset, !v.keep_dir.empty()};
-      DecodedDrive d = decode_drive(on_bus, run, result, v.knowledge, decode_options, work_dir);
+      DecodedDrive d = decode_drive(*sim::population_team(on_bus, run, v.knowledge), result,
+                                    decode_options, work_dir);
       nlohmann::json base = drive_json(spec, vehicle, drive, run, result, v);
       if (!d.config) {
         EstimatorResult r;

@@ -13,6 +13,7 @@
 #include "vmass/config/config.hpp"
 #include "vmass/core/pipeline.hpp"
 #include "vmass/sim/population.hpp"
+#include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
 
 namespace vmass::suite {
@@ -169,12 +170,8 @@ RunResult run_suite_case(const RunSpec& spec, const std::string& work_dir) {
     out.error = m;
     return out;
   }
-  sim::SimulationOptions options;
-  options.seed = spec.seed;
-  options.realism = spec.realism;
-  options.record_ecu_trace = true;
-  sim::SimulationResult result;
-  if (auto m = sim::simulate(run.physics, options, &result); !m.empty()) {
+  sim::SimulationResult result;  // one drive, handed to a team per kind of knowledge
+  if (auto m = sim::simulate(run.physics, run.simulation, &result); !m.empty()) {
     out.error = m;
     return out;
   }
@@ -184,7 +181,8 @@ RunResult run_suite_case(const RunSpec& spec, const std::string& work_dir) {
   for (sim::Knowledge k : spec.knowledge) {
     DecodeOptions decode_options;
     decode_options.estimator_yaml = spec.estimator_yaml;
-    DecodedDrive d = decode_drive(vehicle, run, result, k, decode_options, work_dir);
+    DecodedDrive d =
+        decode_drive(*sim::population_team(vehicle, run, k), result, decode_options, work_dir);
     d.error = without_dir(d.error, work_dir);
     for (const std::string& name : spec.estimators) {
       if (!d.config) {

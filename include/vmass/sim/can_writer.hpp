@@ -1,6 +1,6 @@
-// CAN output of a simulation: the demo vehicle's DBC, the frames its ECUs would send for a
-// simulated drive, a candump -l log of them, and the config's `can:` section that maps the DBC
-// signals back to the estimator inputs.
+// The demo vehicle's CAN bus: its DBC, the frames its ECUs would send for a simulated drive,
+// and the config's `can:` section that maps the DBC signals back to the estimator inputs (the
+// demo team, demo_drive.hpp, hands them over; drive.hpp writes them).
 //
 // The demo vehicle (config/demo_vehicle.dbc, compiled into this library) is a front-engined
 // car with a rear e-axle. Its messages, transmitted at their GenMsgCycleTime from sample k at
@@ -34,7 +34,7 @@
 // which sum back to T exactly. A message whose inputs are invalid in the sample is not sent. Log
 // times are simulation times (the first frame at 0.000000), so truth.csv lines up with them.
 //
-// Pure functions (write_can_files writes files); thread-safe.
+// Pure functions; thread-safe.
 #pragma once
 
 #include <string>
@@ -55,10 +55,5 @@ std::string demo_can_config_yaml(const std::string& dbc_file = "vehicle.dbc");
 
 /// The frames of a simulated drive in time order. "" or a message.
 std::string make_can_frames(const SimulationResult& result, std::vector<can::CanFrame>* frames);
-
-/// Writes DIR/vehicle.dbc and DIR/drive.log (candump -l, interface can0), and appends
-/// demo_can_config_yaml("vehicle.dbc") to DIR/config.yaml (write_config_file() writes it first).
-/// "" or a message naming the file.
-std::string write_can_files(const SimulationResult& result, const std::string& dir);
 
 }  // namespace vmass::sim

@@ -1,5 +1,5 @@
-// Config writer: the config.yaml that goes with a simulated drive, in the schema of
-// docs/formats.md. It holds what a careful vehicle team would know about the simulated car:
+// Config writer: the config.yaml that goes with a drive of the demo car (demo_drive.hpp), in the
+// schema of docs/formats.md. It holds what a careful vehicle team would know about the car:
 //
 // exact (the paper assumes them known):
 //   vehicle.empty_mass_kg, wheelbase_m, wheel_radius_m, brake_gain_n_per_pa, steering_ratio,
@@ -17,7 +17,7 @@
 // estimator: `type: bayes`, and tick_rate_hz when the scenario's differs from the default;
 //   every other key is left at its default (nothing is tuned to the simulated car).
 // The keys and their spelling come from the config's field tables (vmass/config/*_section.hpp).
-// No `can:` section (the CSV files need none) and no `lcm:` section (defaults).
+// No `lcm:` section (defaults); the `can:` section is the demo vehicle's (can_writer.hpp).
 //
 // Stateless functions; thread-safe on distinct streams.
 #pragma once
@@ -44,8 +44,8 @@ PipelineParams make_config_params(const TrueVehicle& vehicle, const MassProperti
 void write_config_yaml(std::ostream& os, const PipelineParams& params,
                        const std::vector<std::string>& header_comment);
 
-/// Writes DIR/config.yaml for a simulation result. "" or a message naming the file.
-std::string write_config_file(const SimulationResult& result, const std::string& dir,
-                              const CalibrationErrors& errors = {});
+/// The demo car's config.yaml for a simulation result, without its `can:` section (the demo
+/// team, demo_drive.hpp, appends can_writer.hpp's).
+std::string demo_config_yaml(const SimulationResult& result, const CalibrationErrors& errors = {});
 
 }  // namespace vmass::sim

@@ -29,16 +29,18 @@
 
 #include "vmass/sim/population.hpp"
 #include "vmass/sim/scenario.hpp"
+#include "vmass/sim/simulator.hpp"
 #include "vmass/sim/vehicle_bus.hpp"
 
 namespace vmass::sim {
 
-/// One drive of one population vehicle: the physics and what the bus adds.
+/// One drive of one population vehicle: the physics, how it is simulated, and what the bus
+/// adds (population_drive.hpp makes it a DriveSpec).
 struct PopulationRun {
   std::string scenario;
-  Scenario physics;  ///< its vehicle is the drawn vehicle's truth under the realism
-  BusOptions bus;    ///< realism and seed set; eps, torque bias and faults per scenario
-  Realism realism = Realism::all();
+  Scenario physics;              ///< its vehicle is the drawn vehicle's truth under the realism
+  SimulationOptions simulation;  ///< seed, realism, the ECU trace the bus samples
+  BusOptions bus;                ///< realism and seed set; eps, torque bias and faults per scenario
 };
 
 std::vector<std::string> population_scenario_names();

@@ -62,8 +62,10 @@ struct BallastTruth {
 
 BallastTruth ballast_truth(const SimulationResult& result, const BallastSchedule& schedule = {});
 
-/// Writes DIR/ballast.csv and DIR/suspension_truth.yaml. "" or a message naming the file.
-std::string write_ballast_files(const SimulationResult& result, const std::string& dir,
-                                const BallastSchedule& schedule = {});
+/// The text of ballast.csv and of suspension_truth.yaml (the demo team hands them over with the
+/// drive, demo_drive.hpp); the schedule must be valid.
+std::string ballast_csv(const SimulationResult& result, const BallastSchedule& schedule = {});
+std::string suspension_truth_yaml(const SimulationResult& result,
+                                  const BallastSchedule& schedule = {});
 
 }  // namespace vmass::sim

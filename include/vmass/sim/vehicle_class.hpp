@@ -1,7 +1,8 @@
 // VehicleClass: the classes of the vehicle population (city car ... rigid heavy truck) and the
-// ranges each class's vehicles are drawn from, every range with its source. This file and
-// population.cpp ARE the population's definition: docs/accuracy.md prints a hash of
-// population_definition_text(), so any change to a range shows there (and its commit says why).
+// ranges each class's vehicles are drawn from, every range with its source. Those ranges (the
+// table in vehicle_class_table.cpp) and population.cpp's draw rules ARE the population's
+// definition: docs/accuracy.md prints a hash of population_definition_text(), so any change to a
+// range shows there (and its commit says why).
 //
 // Sources cited by key (population_sources() has the full references):
 //   [TA]   EU type-approval / manufacturer datasheets of the class's example vehicles (kerb mass,
