@@ -22,6 +22,17 @@ std::string num(double v, const char* format = "%.10g") {
 // 10 significant digits, as the text report's numbers were.
 json::Json json_num(double v) { return json::significant(v, 10); }
 
+/// What Ceres's termination word means for a reader who does not know Ceres.
+std::string termination_meaning(const std::string& word) {
+  if (word == "CONVERGENCE") return "converged: the fit stopped changing within Ceres's tolerances";
+  if (word == "NO_CONVERGENCE") {
+    return "not converged: the iteration limit came first, the fit may be off";
+  }
+  if (word == "FAILURE") return "failed: the solver could not make progress";
+  if (word == "USER_SUCCESS" || word == "USER_FAILURE") return "stopped by vmass-calibrate";
+  return word.empty() ? std::string("not run") : word;
+}
+
 std::string fixed(double v, int decimals, int width = 0) {
   if (!std::isfinite(v)) {
     std::string s = std::isnan(v) ? "-" : (v > 0 ? "inf" : "-inf");
@@ -64,6 +75,7 @@ void json_stats(json::Json* out, const FitStats& s) {
   (*out)["cost"] = json_num(s.cost);
   (*out)["iterations"] = s.iterations;
   (*out)["termination"] = s.termination;
+  (*out)["termination_meaning"] = termination_meaning(s.termination);
 }
 
 json::Json progressive_json(const ProgressiveFit& pr) {
@@ -230,7 +242,9 @@ std::string calibration_text(const SuspensionCalibration& cal,
   o += "  zero offset     " + estimate_text(lin.zero_offset_m, 1e3, 4, "mm", conf) + "\n";
   o += "  residual std    " + fixed(lin.stats.residual_std_mm, 4) + " mm, step mean s.e. " +
        fixed(lin.stats.step_se_mm, 4) + " mm (Cauchy scale " + fixed(lin.stats.robust_scale_mm, 4) +
-       " mm, dof " + fixed(lin.stats.effective_dof, 1) + ", " + lin.stats.termination + ")\n";
+       " mm, dof " + fixed(lin.stats.effective_dof, 1) + ")\n";
+  o += "  solver          " + termination_meaning(lin.stats.termination) + " (Ceres " +
+       lin.stats.termination + ", " + std::to_string(lin.stats.iterations) + " iterations)\n";
   o += "progressive model dF = c (z - z0) + k2 max(0, z - z_knee)^2: " +
        std::string(pr.detected ? "bump stop detected" : "no bump stop (" + pr.reason + ")") + "\n";
   if (std::isfinite(pr.stiffness_n_per_m.value)) {
@@ -242,6 +256,8 @@ std::string calibration_text(const SuspensionCalibration& cal,
          fixed(pr.stats.step_se_mm, 4) + " mm (Cauchy scale " + fixed(pr.stats.robust_scale_mm, 4) +
          " mm, dof " + fixed(pr.stats.effective_dof, 1) + "); F " + fixed(pr.f_statistic, 1) +
          " vs critical " + fixed(pr.f_critical, 2) + "\n";
+    o += "  solver          " + termination_meaning(pr.stats.termination) + " (Ceres " +
+         pr.stats.termination + ", " + std::to_string(pr.stats.iterations) + " iterations)\n";
   }
   o += "linear range      " + num(cal.linear_range_kg, "%g") +
        " kg (largest load the linear model reproduces within " +

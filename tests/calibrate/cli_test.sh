@@ -62,6 +62,9 @@ case "$case_name" in
     printf '\357\273\277' >s.csv && good_steps body.csv && cat body.csv >>s.csv
     "$tool" --ballast s.csv $geometry >out.txt 2>err.txt || { echo "FAIL: exit $?"; cat err.txt; exit 1; }
     grep -q 'stiffness_n_per_m: 3' out.txt || { echo "FAIL: no stiffness"; cat out.txt; exit 1; }
+    # Ceres's termination word is said in words, beside the word itself.
+    grep -q '^  solver          converged: .*(Ceres CONVERGENCE, [0-9]* iterations)$' out.txt ||
+      { echo "FAIL: no solver line"; cat out.txt; exit 1; }
     echo "ok: a UTF-8 byte order mark is ignored" ;;
   loader_would_refuse)
     # Within every input bound, but 0.005 mm per 50 t: a stiffness the config loader refuses.
@@ -89,7 +92,7 @@ case "$case_name" in
     head -c 8 p.png | od -An -c | grep -q 'P   N   G' || { echo "FAIL: no PNG"; exit 1; }
     grep -q '^suspension:' susp.yaml || { echo "FAIL: no snippet"; exit 1; }
     for key in stiffness_n_per_m stiffness_std_n_per_m zero_offset_mm linear_range_kg \
-               '"progressive"' mass_check; do
+               '"progressive"' mass_check termination_meaning; do
       grep -q "$key" out.json || { echo "FAIL: JSON lacks $key"; exit 1; }
     done
     echo "ok: PNG, snippet and JSON written" ;;

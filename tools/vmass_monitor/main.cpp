@@ -169,7 +169,9 @@ struct Options {
 std::optional<int> parse_options(int argc, char** argv, Options* o) {
   CLI::App app{"vmass-monitor: live view of vmassd's LCM output in a terminal"};
   app.add_option("--config", o->config_path, "vmass config (for its lcm: URL and channel names)");
-  app.add_option("--lcm-url", o->url, "LCM URL (default: the config's, else LCM's default)");
+  app.add_option("--lcm-url", o->url,
+                 "LCM URL (default: the config's lcm.url, else vmassd's default "
+                 "udpm://239.255.76.67:7667?ttl=0)");
   app.add_option("--estimate-channel", o->estimate_channel, "default VMASS_ESTIMATE");
   app.add_option("--status-channel", o->status_channel, "default VMASS_STATUS");
   auto* once_opt = app.add_flag("--once", o->once, "print one report and exit");
