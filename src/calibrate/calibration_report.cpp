@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "vmass/config/suspension_section.hpp"
 #include "vmass/config/yaml_reader.hpp"
@@ -78,7 +80,162 @@ void json_stats(json::Json* out, const FitStats& s) {
   (*out)["termination_meaning"] = termination_meaning(s.termination);
 }
 
-json::Json progressive_json(const ProgressiveFit& pr) {
+/// How the report names a covariance parameter, and its SI unit.
+struct ParameterName {
+  const char* key;
+  const char* words;
+  const char* unit;
+};
+
+constexpr ParameterName kParameterNames[] = {{"stiffness_n_per_m", "stiffness", "N/m"},
+                                             {"zero_offset_m", "zero offset", "m"},
+                                             {"knee_m", "knee", "m"},
+                                             {"rate_n_per_m2", "rate", "N/m^2"}};
+
+ParameterName parameter_name(const std::string& key) {
+  for (const ParameterName& p : kParameterNames) {
+    if (key == p.key) return p;
+  }
+  return {key.c_str(), key.c_str(), "SI"};
+}
+
+/// The loads of the steps: the lightest and the heaviest at or below the knee (in the linear
+/// fit), the lightest beyond it (NaN when none).
+struct KneeSteps {
+  double lightest_kg = std::numeric_limits<double>::quiet_NaN();
+  double last_below_kg = std::numeric_limits<double>::quiet_NaN();
+  double first_beyond_kg = std::numeric_limits<double>::quiet_NaN();
+};
+
+KneeSteps knee_steps(const SuspensionCalibration& cal) {
+  KneeSteps k;
+  for (const BallastStepFit& s : cal.steps) {
+    const double m = s.step.added_mass_kg;
+    if (s.in_linear_fit) {
+      if (!(m <= k.last_below_kg)) k.last_below_kg = m;
+      if (!(m >= k.lightest_kg)) k.lightest_kg = m;
+    } else if (!(m >= k.first_beyond_kg)) {
+      k.first_beyond_kg = m;
+    }
+  }
+  return k;
+}
+
+/// What would separate two parameters that trade off, from the steps the fit had. Measured on
+/// synthetic tests of the progressive curve (0.02 mm noise): stiffness and knee (and the other
+/// pairs with the knee or rate) fall from r = 0.90 to 0.29 when the gap between the last step
+/// below the knee and the first beyond it is filled, and rise with more steps beyond it; knee and
+/// rate stay at 0.89-0.97 whatever the steps (0.84 with one step at 2.5 times the load), the
+/// shape of the model; stiffness and zero offset fall from 0.96 to 0.81 with a step at zero.
+std::string trade_off_advice(const std::string& a, const std::string& b,
+                             const SuspensionCalibration& cal) {
+  const KneeSteps k = knee_steps(cal);
+  auto involves = [&](const char* key) { return a == key || b == key; };
+  if (involves("knee_m") && involves("rate_n_per_m2")) {
+    return "a later knee with a steeper rate bends the curve alike; more steps reduce this only "
+           "a little (heavier ones beyond the knee most): judge the written curve by its "
+           "per-step residuals and the mass check, not these two alone";
+  }
+  if (involves("knee_m") || involves("rate_n_per_m2")) {
+    return "more ballast steps between " + num(k.last_below_kg, "%g") + " and " +
+           num(k.first_beyond_kg, "%g") +
+           " kg, where the linear part ends and the knee lies, would separate them";
+  }
+  if (involves("stiffness_n_per_m") && involves("zero_offset_m")) {
+    if (k.lightest_kg > 0.0) {
+      return "a step at zero added load (the lightest is " + num(k.lightest_kg, "%g") +
+             " kg) would separate them";
+    }
+    return "steps spread evenly from zero added load to " + num(k.last_below_kg, "%g") +
+           " kg would separate them (to about r = 0.8, no further)";
+  }
+  return "more ballast steps would separate them";
+}
+
+/// A strongly correlated pair with what would separate it.
+struct TradeOff {
+  CorrelatedPair pair;
+  std::string advice;
+};
+
+std::vector<TradeOff> trade_offs(const ParameterCovariance& c, const SuspensionCalibration& cal) {
+  std::vector<TradeOff> out;
+  for (const CorrelatedPair& p : strongly_correlated(c)) {
+    out.push_back({p, trade_off_advice(c.names[p.first], c.names[p.second], cal)});
+  }
+  return out;
+}
+
+/// "stiffness and knee trade off (r = -0.97): advice".
+std::string trade_off_text(const ParameterCovariance& c, const TradeOff& t) {
+  return std::string(parameter_name(c.names[t.pair.first]).words) + " and " +
+         parameter_name(c.names[t.pair.second]).words +
+         " trade off (r = " + num(t.pair.correlation, "%.2f") + "): " + t.advice;
+}
+
+/// One matrix of the covariance: a header of parameter names, a row per parameter.
+std::string matrix_text(const ParameterCovariance& c, bool correlation) {
+  const std::size_t n = c.size();
+  constexpr std::size_t kLabel = 20;
+  std::string o = correlation ? "  correlation" : "  covariance (SI)";
+  o += std::string(kLabel - o.size(), ' ');
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::string w = parameter_name(c.names[j]).words;
+    o += std::string(w.size() < 13 ? 13 - w.size() : 1, ' ') + w;
+  }
+  o += "\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    const ParameterName p = parameter_name(c.names[i]);
+    std::string label = "    " + std::string(p.words);
+    if (!correlation) label += std::string(" [") + p.unit + "]";
+    o += label + std::string(label.size() < kLabel ? kLabel - label.size() : 1, ' ');
+    for (std::size_t j = 0; j < n; ++j) {
+      o +=
+          correlation ? fixed(c.correlation_at(i, j), 3, 13) : num(c.covariance_at(i, j), "%13.4e");
+    }
+    o += "\n";
+  }
+  return o;
+}
+
+/// The correlation and covariance of a model's parameters, and its trade-offs (or why not).
+std::string covariance_text(const ParameterCovariance& c, const SuspensionCalibration& cal) {
+  if (!c.estimable) return "  correlation     not estimable: " + c.reason + "\n";
+  std::string o = matrix_text(c, true) + matrix_text(c, false);
+  o += "    (entry i, j in unit_i x unit_j; sqrt of the diagonal is each std)\n";
+  const std::vector<TradeOff> pairs = trade_offs(c, cal);
+  if (pairs.empty()) o += "  trade-offs      none (every |r| <= 0.9)\n";
+  for (const TradeOff& t : pairs) o += "  trade-off       " + trade_off_text(c, t) + "\n";
+  return o;
+}
+
+/// parameters, covariance_estimable, covariance_reason, correlation, covariance, trade_offs.
+void json_covariance(json::Json* out, const ParameterCovariance& c,
+                     const SuspensionCalibration& cal) {
+  (*out)["parameters"] = c.names;
+  (*out)["covariance_estimable"] = c.estimable;
+  (*out)["covariance_reason"] = c.reason;
+  json::Json correlation = nullptr, covariance = nullptr;
+  if (c.estimable) {
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      for (std::size_t j = 0; j < c.size(); ++j) {
+        correlation[c.names[i]][c.names[j]] = json_num(c.correlation_at(i, j));
+        covariance[c.names[i]][c.names[j]] = json_num(c.covariance_at(i, j));
+      }
+    }
+  }
+  (*out)["correlation"] = correlation;
+  (*out)["covariance"] = covariance;
+  (*out)["trade_offs"] = json::Json::array();
+  for (const TradeOff& t : trade_offs(c, cal)) {
+    (*out)["trade_offs"].push_back({{"parameters", {c.names[t.pair.first], c.names[t.pair.second]}},
+                                    {"correlation", json_num(t.pair.correlation)},
+                                    {"text", trade_off_text(c, t)},
+                                    {"advice", t.advice}});
+  }
+}
+
+json::Json progressive_json(const ProgressiveFit& pr, const SuspensionCalibration& cal) {
   json::Json j;
   j["detected"] = pr.detected;
   j["reason"] = pr.reason;
@@ -89,6 +246,7 @@ json::Json progressive_json(const ProgressiveFit& pr) {
   j["f_statistic"] = json_num(pr.f_statistic);
   j["f_critical"] = json_num(pr.f_critical);
   json_stats(&j, pr.stats);
+  json_covariance(&j, pr.covariance, cal);
   return j;
 }
 
@@ -212,7 +370,8 @@ std::string calibration_json(const SuspensionCalibration& cal,
   j["calibrated_range_kg"] = json_num(cal.calibrated_range_kg);
   j["linear_tolerance"] = json_num(cal.linear_tolerance);
   json_stats(&j["linear"], lin.stats);
-  j["progressive"] = progressive_json(cal.progressive);
+  json_covariance(&j["linear"], lin.covariance, cal);
+  j["progressive"] = progressive_json(cal.progressive, cal);
   j["geometry"] = geometry_json(cal.geometry);
   j["suspension"] = suspension_json(cal.suspension_params());
   j["steps"] = json::Json::array();
@@ -245,6 +404,7 @@ std::string calibration_text(const SuspensionCalibration& cal,
        " mm, dof " + fixed(lin.stats.effective_dof, 1) + ")\n";
   o += "  solver          " + termination_meaning(lin.stats.termination) + " (Ceres " +
        lin.stats.termination + ", " + std::to_string(lin.stats.iterations) + " iterations)\n";
+  o += covariance_text(lin.covariance, cal);
   o += "progressive model dF = c (z - z0) + k2 max(0, z - z_knee)^2: " +
        std::string(pr.detected ? "bump stop detected" : "no bump stop (" + pr.reason + ")") + "\n";
   if (std::isfinite(pr.stiffness_n_per_m.value)) {
@@ -258,6 +418,7 @@ std::string calibration_text(const SuspensionCalibration& cal,
          " vs critical " + fixed(pr.f_critical, 2) + "\n";
     o += "  solver          " + termination_meaning(pr.stats.termination) + " (Ceres " +
          pr.stats.termination + ", " + std::to_string(pr.stats.iterations) + " iterations)\n";
+    o += covariance_text(pr.covariance, cal);
   }
   o += "linear range      " + num(cal.linear_range_kg, "%g") +
        " kg (largest load the linear model reproduces within " +

@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <ceres/ceres.h>
 #include <Eigen/Dense>
@@ -246,6 +249,37 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
+// The reported parameters of each model, as ParameterCovariance names them.
+std::vector<std::string> linear_names() { return {"stiffness_n_per_m", "zero_offset_m"}; }
+std::vector<std::string> progressive_names() {
+  return {"stiffness_n_per_m", "zero_offset_m", "knee_m", "rate_n_per_m2"};
+}
+
+// The reported parameters' covariance in SI units, s^2 A C A^T (parameter_covariance.hpp): c
+// the unscaled covariance of the fitted parameters (valid when computed), a the Jacobian of the
+// reported parameters with respect to the fitted ones.
+ParameterCovariance reported_covariance(std::vector<std::string> names, bool computed,
+                                        const Eigen::MatrixXd& c, const Eigen::MatrixXd& a,
+                                        const Uncertainty& u) {
+  if (!computed) {
+    return not_estimable_covariance(
+        std::move(names),
+        "rank deficient: Ceres could not invert J^T J at the solution (reciprocal condition "
+        "number below 1e-14): the steps do not determine every parameter");
+  }
+  if (!std::isfinite(u.scale)) {
+    return not_estimable_covariance(
+        std::move(names),
+        "no residual degree of freedom to scale it by (effective dof " + fmt("%.2f", u.dof) + ")");
+  }
+  const Eigen::MatrixXd sigma = u.scale * u.scale * a * c * a.transpose();
+  std::vector<double> row_major;
+  for (int i = 0; i < sigma.rows(); ++i) {
+    for (int j = 0; j < sigma.cols(); ++j) row_major.push_back(sigma(i, j));
+  }
+  return make_parameter_covariance(std::move(names), row_major);
+}
+
 }  // namespace
 
 std::string SuspensionFitOptions::validate() const {
@@ -449,6 +483,19 @@ void describe_progressive(const FitInput& in, const ProgressiveRun& run,
   pf.knee_m =
       estimate(prog.z0_mm + prog.d_mm, ok ? c(0, 0) + c(2, 2) + 2.0 * c(0, 2) : kNaN, u, 1e-3, ok);
   pf.rate_n_per_m2 = estimate(prog.k2_n_per_mm2, ok ? c(3, 3) : kNaN, u, 1e6, ok);
+  if (!pf.detected) {
+    pf.covariance = not_estimable_covariance(
+        progressive_names(), "without a bump stop the knee and rate are not identified");
+    return;
+  }
+  // Fitted (z0 mm, c N/mm, d mm, k2 N/mm^2) to reported (c N/m, z0 m, z0 + d m, k2 N/m^2).
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(4, 4);
+  a(0, 1) = 1e3;
+  a(1, 0) = 1e-3;
+  a(2, 0) = 1e-3;
+  a(2, 2) = 1e-3;
+  a(3, 3) = 1e6;
+  pf.covariance = reported_covariance(progressive_names(), ok, c, a, u);
 }
 
 struct LinearRun {
@@ -499,6 +546,11 @@ void describe_linear(const FitInput& in, const LinearRun& run, SuspensionCalibra
   LinearFit& lf = cal->linear;
   lf.zero_offset_m = estimate(run.params.z0_mm, ok ? c(0, 0) : kNaN, u, 1e-3, ok);
   lf.stiffness_n_per_m = estimate(run.params.c_n_per_mm, ok ? c(1, 1) : kNaN, u, 1e3, ok);
+  // Fitted (z0 mm, c N/mm) to reported (c N/m, z0 m).
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2, 2);
+  a(0, 1) = 1e3;
+  a(1, 0) = 1e-3;
+  lf.covariance = reported_covariance(linear_names(), ok, c, a, u);
   lf.stats = {static_cast<int>(run.steps.size()),
               run.scale_mm,
               u.residual_std,
@@ -603,7 +655,12 @@ SuspensionFitResult fit_suspension(const std::vector<BallastStep>& input_steps,
   cal.geometry = geometry;
   cal.linear_tolerance = options.linear_tolerance;
   const ProgressiveRun prog = fit_progressive(in, &cal.progressive.reason);
-  if (prog.usable) describe_progressive(in, prog, &cal);
+  if (prog.usable) {
+    describe_progressive(in, prog, &cal);
+  } else {
+    cal.progressive.covariance =
+        not_estimable_covariance(progressive_names(), "no usable progressive fit");
+  }
   const double knee_mm = cal.progressive.detected ? prog.params.z0_mm + prog.params.d_mm
                                                   : std::numeric_limits<double>::infinity();
   const LinearRun lin = fit_linear(in, knee_mm);

@@ -65,6 +65,12 @@ case "$case_name" in
     # Ceres's termination word is said in words, beside the word itself.
     grep -q '^  solver          converged: .*(Ceres CONVERGENCE, [0-9]* iterations)$' out.txt ||
       { echo "FAIL: no solver line"; cat out.txt; exit 1; }
+    # The linear fit's correlation and covariance (SI), and whether a pair trades off.
+    grep -q '^  correlation           stiffness  zero offset$' out.txt &&
+      grep -q '^    zero offset \[m\]    [0-9.e+-]*   [0-9.e+-]*$' out.txt &&
+      grep -q '^  trade-off' out.txt ||
+      { echo "FAIL: no correlation/covariance section"; cat out.txt; exit 1; }
+    ! grep -qi 'nan' out.txt || { echo "FAIL: NaN in the report"; cat out.txt; exit 1; }
     echo "ok: a UTF-8 byte order mark is ignored" ;;
   loader_would_refuse)
     # Within every input bound, but 0.005 mm per 50 t: a stiffness the config loader refuses.
@@ -92,7 +98,9 @@ case "$case_name" in
     head -c 8 p.png | od -An -c | grep -q 'P   N   G' || { echo "FAIL: no PNG"; exit 1; }
     grep -q '^suspension:' susp.yaml || { echo "FAIL: no snippet"; exit 1; }
     for key in stiffness_n_per_m stiffness_std_n_per_m zero_offset_mm linear_range_kg \
-               '"progressive"' mass_check termination_meaning; do
+               '"progressive"' mass_check termination_meaning '"covariance_estimable":true' \
+               '"correlation":{"stiffness_n_per_m":{"stiffness_n_per_m":1.0,"zero_offset_m":' \
+               '"covariance":{"stiffness_n_per_m":{"stiffness_n_per_m":' '"trade_offs":'; do
       grep -q "$key" out.json || { echo "FAIL: JSON lacks $key"; exit 1; }
     done
     echo "ok: PNG, snippet and JSON written" ;;

@@ -12,8 +12,13 @@
 //    M_idle + m_k:
 //      M_est = M_idle + 2 l F(z_k) / (l_f g),   error = (M_est - M_true) / M_true;
 //  - calibration_json(): one JSON object (parameters with std and interval, per-step residuals,
-//    ranges, the mass check when given);
-//  - calibration_text(): the same as a human-readable report with per-step tables.
+//    ranges, the mass check when given; per model the parameters' correlation and covariance in
+//    SI units keyed by parameter name, or why not, and the strongly correlated pairs: keys in
+//    docs/formats.md, "Calibration result");
+//  - calibration_text(): the same as a human-readable report with per-step tables; per model the
+//    correlation and covariance matrices, and for each pair with |r| > 0.9 a line saying that
+//    they trade off and what ballast steps would separate them (or that none would: knee and
+//    rate), else "none"; a covariance that is not estimable is said with its reason.
 //
 // Pure functions; thread-safe.
 #pragma once

@@ -38,7 +38,11 @@
 //     one-sample step): with few steps the residuals alone can be luckily small, and the scatter
 //     of the step means cannot be smaller than their sampling noise. Intervals are
 //     value +- t_{(1+confidence)/2, sum w - p} std (Student t). Every solve must pass
-//     Summary::IsSolutionUsable().
+//     Summary::IsSolutionUsable(). The same scaled matrix, carried to the reported parameters in
+//     SI units (the knee is z0 + d), is each fit's `covariance` with its correlation
+//     (parameter_covariance.hpp): linear (stiffness, zero offset), progressive (stiffness, zero
+//     offset, knee, rate; only for an accepted bump stop). Not estimable, with the reason, when
+//     Ceres finds J^T J rank deficient or there is no residual degree of freedom to scale by.
 //  6. Steps with |r| > 2 a (weight < 0.2) are reported as outliers.
 //  7. Linear range: the largest added load m_k such that every non-outlier step with
 //     0 < m <= m_k is reproduced by the linear model within linear_tolerance:
@@ -55,6 +59,7 @@
 
 #include "vmass/calibrate/ballast_step.hpp"
 #include "vmass/calibrate/load_geometry.hpp"
+#include "vmass/calibrate/parameter_covariance.hpp"
 #include "vmass/core/vehicle_params.hpp"
 
 namespace vmass::calibrate {
@@ -96,6 +101,7 @@ struct LinearFit {
   Estimate stiffness_n_per_m;  ///< c
   Estimate zero_offset_m;      ///< z0: the sensor reading at zero added load
   FitStats stats;
+  ParameterCovariance covariance;  ///< stiffness_n_per_m, zero_offset_m
 };
 
 struct ProgressiveFit {
@@ -108,6 +114,8 @@ struct ProgressiveFit {
   double f_statistic = std::numeric_limits<double>::quiet_NaN();
   double f_critical = std::numeric_limits<double>::quiet_NaN();
   FitStats stats;
+  /// stiffness_n_per_m, zero_offset_m, knee_m, rate_n_per_m2 (not estimable without a bump stop)
+  ParameterCovariance covariance;
 };
 
 /// How the fit describes one ballast step (the calibration report's per-step row).
