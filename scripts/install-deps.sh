@@ -12,12 +12,15 @@ packages=(
   # libraries
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libsystemd-dev
   libboost-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
+  # zlib: the BLF reader inflates the log containers (src/runtime/blf_reader.cpp)
+  zlib1g-dev
   # LCM: library, tools (lcm-gen, lcm-logger), Java bindings for lcm-spy
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
   # plotting (tools/vmass-plot) and Python test oracles
   python3 python3-matplotlib python3-venv python3-yaml
-  # man pages (help2man from --help) and the .deb (CPack runs dpkg-shlibdeps, dpkg-deb)
-  help2man dpkg-dev
+  # man pages (help2man from --help) and the .debs (CPack runs dpkg-shlibdeps, dpkg-deb; the
+  # package test runs lintian on them)
+  help2man dpkg-dev lintian
   # compiler cache: a fresh clone compiles only what no earlier build compiled (CMakeLists.txt)
   ccache
   # network namespaces and SocketCAN user space for integration tests

@@ -1,13 +1,44 @@
 // Decodes a wheel-speed frame with vmass::can and hands it to the vmass::core estimator as one
-// tick: what a ROS 2 node or a team's own daemon does with the installed package.
+// tick; loads a vehicle's config with vmass::config into an estimator, and says where a broken
+// config is wrong: what a ROS 2 node or a team's own daemon does with the installed package.
+//   outside CONFIG BROKEN_CONFIG
 #include <cstdio>
 #include <string>
 
 #include <vmass/can/dbc.hpp>
 #include <vmass/can/decoder.hpp>
+#include <vmass/config/config.hpp>
 #include <vmass/core/pipeline.hpp>
 
-int main() {
+namespace {
+
+// The estimator from a config file, as vmassd builds it; then the error of a broken one.
+int load_configs(const char* path, const char* broken_path) {
+  const vmass::ConfigLoad load = vmass::load_config(path);
+  if (!load.ok()) {
+    std::printf("config: %s\n", load.error.c_str());
+    return 1;
+  }
+  const vmass::Pipeline pipeline(load.config->pipeline);
+  std::printf("config: empty mass %.1f kg, estimator %s\n",
+              load.config->pipeline.vehicle.empty_mass_kg,
+              std::string(pipeline.regressor().name()).c_str());
+  const vmass::ConfigLoad broken = vmass::load_config(broken_path);
+  if (broken.ok()) {
+    std::printf("broken: loaded without an error\n");
+    return 1;
+  }
+  std::printf("broken: %s\n", broken.error.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::printf("usage: outside CONFIG BROKEN_CONFIG\n");
+    return 2;
+  }
   const char* dbc =
       "VERSION \"\"\nBU_: ESP\nBO_ 256 ESP_Speed: 2 ESP\n"
       " SG_ VehicleSpeed : 0|16@1+ (0.01,0) [0|655.35] \"km/h\" Vector__XXX\n";
@@ -48,5 +79,5 @@ int main() {
   pipeline.step(sample);
   std::printf("speed %.1f km/h, estimator %s\n", speed_kmh,
               std::string(pipeline.regressor().name()).c_str());
-  return 0;
+  return load_configs(argv[1], argv[2]);
 }
