@@ -48,6 +48,8 @@ std::string_view reason_name(StatusReason r) {
       return "load_unchecked";
     case StatusReason::kMassImplausible:
       return "mass_implausible";
+    case StatusReason::kKnownMass:
+      return "known_mass";
   }
   return "unknown";
 }
@@ -84,6 +86,11 @@ std::string Estimate::describe_reason() const {
     text += ": " + describe_rejection() +
             "; nothing is published until an estimate is in the band (check the config's "
             "empty mass and suspension calibration)";
+  }
+  if (reason == StatusReason::kKnownMass) {
+    text +=
+        ": the mass the user declared for this load, published until the load changes; the "
+        "drive on it is evidence of the learnt scale";
   }
   return text;
 }

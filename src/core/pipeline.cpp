@@ -28,6 +28,7 @@ std::string EstimatorParams::validate() const {
   c.nested(load_change.validate());
   c.nested(longitudinal.validate());
   c.nested(lateral.validate());
+  c.nested(learning.validate());
   c.nested(supervisor.validate());
   c.nested(rls.validate());
   c.nested(bayes.validate());
@@ -68,6 +69,22 @@ std::string PipelineParams::validate() const {
   return c.message();
 }
 
+namespace {
+
+// Declared bounds are of a uniform error (std = bound / sqrt(3)); the pitch's is a std already.
+constexpr double kUniformStdPerBound = 0.5773502691896258;
+
+/// A longitudinal pair in the belief's units: its force divided by the learnt scale (the pairs
+/// read kappa M). Exactly the pair when the scale is 1.
+void divide_force(RegressionPair* pair, double scale) {
+  if (scale == 1.0) return;
+  pair->y_n /= scale;
+  pair->noise_std_n /= scale;
+  pair->rotating_n /= scale;
+}
+
+}  // namespace
+
 Pipeline::Pipeline(const PipelineParams& params)
     : params_(params),
       static_init_(params.vehicle, params.suspension, params.estimator.static_init),
@@ -90,7 +107,8 @@ Pipeline::Pipeline(const PipelineParams& params)
       pair_information_(
           1.0 / params.estimator.effective_pair_correlation_ticks(params.estimator.differencing)),
       monitor_pair_information_(1.0 / params.estimator.effective_pair_correlation_ticks(
-                                          params.estimator.monitor_differencing())) {}
+                                          params.estimator.monitor_differencing())),
+      learnt_(params.estimator.learning, std::sqrt(declared_scale_variance(params.vehicle))) {}
 
 void Pipeline::reset_extractors(double reference_mass_kg) {
   longitudinal_.set_reference_mass(reference_mass_kg);
@@ -102,6 +120,8 @@ void Pipeline::reset_extractors(double reference_mass_kg) {
 }
 
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
+  end_known_mass();
+  pair_scale_ = learnt_.scale();
   load_unchecked_ = false;
   regressor_->reset(prior);
   supervisor_.on_regressor_reset();
@@ -118,6 +138,7 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
   // Extractors run on every tick (their filters need continuity); the supervisor decides.
   Extraction longitudinal = longitudinal_.step(sample);
   Extraction lateral = lateral_.step(sample);
+  divide_force(&longitudinal.pair, pair_scale_);
   longitudinal.pair.information = pair_information_;
   lateral.pair.information = pair_information_;
   if (longitudinal.has_pair()) rotating_sensitivity_.add(longitudinal.pair);
@@ -126,6 +147,7 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
   // Pairs kept while the driveline lag was unknown, now at the identified lag.
   Extraction released;
   while (longitudinal_.pop_released(&released)) {
+    divide_force(&released.pair, pair_scale_);
     released.pair.information = pair_information_;
     if (released.has_pair()) rotating_sensitivity_.add(released.pair);
     supervisor_.offer_late(Block::kLongitudinal, released, *regressor_, &result->estimate_changed);
@@ -145,18 +167,21 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
   }
   Extraction longitudinal = monitor_longitudinal_.step(sample);
   Extraction lateral = monitor_lateral_.step(sample);
+  divide_force(&longitudinal.pair, pair_scale_);
   Extraction released;
   for (Extraction* e : {&longitudinal, &lateral}) {
     e->pair.information = monitor_pair_information_;
     if (e->has_pair()) load_monitor_.offer(e->pair);
   }
   while (monitor_longitudinal_.pop_released(&released)) {
+    divide_force(&released.pair, pair_scale_);
     released.pair.information = monitor_pair_information_;
     if (released.has_pair()) load_monitor_.offer(released.pair);
   }
 }
 
 void Pipeline::adopt_challenger() {
+  end_known_mass();  // the load changed: the known mass no longer holds
   if (params_.estimator.type == RegressorType::kRls) {
     rls_ = load_monitor_.challenger_rls();
   } else {
@@ -188,12 +213,17 @@ void Pipeline::on_static_mass(const StaticMass& static_mass, StepResult* result)
   // The first standstill after driving on the empty-mass prior does not throw away what the
   // events taught. A load change shifts the belief by the added mass (with the payload
   // prior's uncertainty) rather than forgetting what the drive taught about the vehicle.
+  // A known mass holds until the load changes.
+  if (known_mass_.active && !static_mass.load_changed) return;
   const RegressorState state = regressor_->state();
   const bool events_used = has_prior_ && state.pairs_used > 0;
   if (static_mass.load_changed && events_used) {
+    // From the known mass, while one holds: it is the load's mass, the regression only evidence.
+    const double base_kg = known_mass_.active ? known_mass_.mass_kg : state.mass_kg;
+    const double base_std_kg = known_mass_.active ? known_mass_.std_kg : state.mass_std_kg;
     MassPrior shifted = static_mass.prior;
-    shifted.mass_kg = state.mass_kg + static_mass.mass_change_kg;
-    shifted.mass_std_kg = std::hypot(state.mass_std_kg, static_mass.mass_change_std_kg);
+    shifted.mass_kg = base_kg + static_mass.mass_change_kg;
+    shifted.mass_std_kg = std::hypot(base_std_kg, static_mass.mass_change_std_kg);
     restart(shifted, StatusReason::kLoadChanged);
   } else if (static_mass.load_changed || !events_used) {
     restart(static_mass.prior, static_mass.load_changed ? StatusReason::kLoadChanged
@@ -212,7 +242,11 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   // A power cycle: the load may have changed while parked, and the belief's pairs and its
   // reference deflection are of the load it had then. The mass starts afresh, as on a first
   // drive: at the first standstill window (a car that reads its load) or with the drive (one
-  // that does not). Only the counters carry over.
+  // that does not). The counters and what was learnt about the car carry over; the drive on a
+  // known mass is evidence of the learnt scale.
+  end_known_mass();
+  learnt_.drift();
+  pair_scale_ = learnt_.scale();
   has_prior_ = false;
   has_plausible_ = false;
   prior_reason_ = StatusReason::kWaitingForStandstill;
@@ -228,6 +262,7 @@ StepResult Pipeline::step(const Sample& sample) {
   StepResult result;
 
   if (restore_pending_) begin_after_restore(sample);
+  if (declared_.active) begin_known_mass();
   if (const std::optional<StaticMass> static_mass = static_init_.step(sample)) {
     on_static_mass(*static_mass, &result);
   }
@@ -297,15 +332,13 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.blocks[0] = supervisor_.counters(Block::kLongitudinal);
   s.blocks[1] = supervisor_.counters(Block::kLateral);
   s.time_us = estimate_.time_us;
+  s.learnt = learnt_.state();
+  s.known_mass = known_mass_;
+  s.pair_scale = pair_scale_;
   return s;
 }
 
-bool Pipeline::restore(const PipelineSnapshot& s) {
-  // A car whose suspension reads the load re-checks it against the saved reference deflection
-  // at its next standstill; without a reference (none was measured at this load) that
-  // standstill's static prior is the start after a power cycle. A car without a load sensor
-  // never has a reference; the load monitor treats the time switched off as a long stop.
-  const bool carries_load = params_.suspension.carries_load();
+bool Pipeline::fits(const PipelineSnapshot& s) const {
   if (s.type != params_.estimator.type || !s.has_prior) {
     return false;
   }
@@ -323,6 +356,25 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
       return false;
     }
   }
+  if ((s.learnt_saved && !learnt_.implausible(s.learnt).empty()) || !(s.pair_scale > 0.0) ||
+      !std::isfinite(s.pair_scale) ||
+      (s.known_mass.active &&
+       !(s.known_mass.mass_kg > 0.0 && s.known_mass.std_kg > 0.0 &&
+         std::isfinite(s.known_mass.mass_kg) && std::isfinite(s.known_mass.std_kg) &&
+         s.known_mass.scale_used > 0.0 && std::isfinite(s.known_mass.scale_used)))) {
+    return false;
+  }
+  return true;
+}
+
+bool Pipeline::restore(const PipelineSnapshot& s) {
+  // A car whose suspension reads the load re-checks it against the saved reference deflection
+  // at its next standstill; without a reference (none was measured at this load) that
+  // standstill's static prior is the start after a power cycle. A car without a load sensor
+  // never has a reference; the load monitor treats the time switched off as a long stop.
+  const bool carries_load = params_.suspension.carries_load();
+  if (!fits(s)) return false;
+  const MassPrior& prior = s.prior;
   // Try on copies first so that a refused snapshot changes nothing.
   if (s.type == RegressorType::kRls) {
     RlsEstimator trial = rls_;
@@ -345,6 +397,9 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
     if (!trial.restore(nig, s.pairs_used)) return false;
     bayes_ = trial;
   }
+  if (s.learnt_saved) learnt_.restore(s.learnt);
+  known_mass_ = s.known_mass;
+  pair_scale_ = s.pair_scale;
   supervisor_.on_regressor_reset();
   supervisor_.restore_counters(Block::kLongitudinal, s.blocks[0]);
   supervisor_.restore_counters(Block::kLateral, s.blocks[1]);
@@ -377,6 +432,73 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   return true;
 }
 
+bool Pipeline::declare_known_mass(double mass_kg, double std_kg) {
+  const MassBand band = plausible_mass_band(params_.vehicle);
+  if (!std::isfinite(mass_kg) || !band.contains(mass_kg) || !(std_kg > 0.0) ||
+      !std::isfinite(std_kg)) {
+    return false;
+  }
+  declared_ = KnownMass{true, mass_kg, std_kg, 1.0};
+  return true;
+}
+
+void Pipeline::begin_known_mass() {
+  // The regression restarts from the known mass with a vague prior: the drive's pairs, not the
+  // declaration, are the evidence of the scale (scale_observation()).
+  MassPrior prior = static_init_.no_static_prior();
+  prior.mass_kg = declared_.mass_kg;
+  prior.mass_std_kg = params_.estimator.learning.anchor_prior_std_fraction * declared_.mass_kg;
+  restart(prior, StatusReason::kKnownMass);
+  known_mass_ = declared_;
+  known_mass_.scale_used = pair_scale_;
+  declared_.active = false;
+  has_plausible_ = true;
+}
+
+void Pipeline::end_known_mass() {
+  if (!known_mass_.active) return;
+  ScaleObservation seen;
+  if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
+                        params_.estimator.model_error_std_fraction, &seen)) {
+    learnt_.add_evidence(seen.log_scale, seen.variance);
+  }
+  known_mass_.active = false;
+}
+
+LearntScale Pipeline::learnt_scale_if_ended() const {
+  LearntScale out = learnt_;
+  ScaleObservation seen;
+  if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
+                        params_.estimator.model_error_std_fraction, &seen)) {
+    out.add_evidence(seen.log_scale, seen.variance);
+  }
+  return out;
+}
+
+void Pipeline::reset_learnt() { learnt_.reset(); }
+
+bool Pipeline::restore_learnt(const LearntScaleState& learnt) {
+  if (!learnt_.restore(learnt)) return false;
+  learnt_.drift();  // a restart with its load unknown is a power cycle
+  if (!has_prior_) pair_scale_ = learnt_.scale();
+  return true;
+}
+
+void Pipeline::publish_known_mass() {
+  // What the user declared is the load's mass until it changes; the regression goes on as the
+  // scale's evidence and the load-change check.
+  estimate_.mass_kg = known_mass_.mass_kg;
+  estimate_.mass_std_kg = known_mass_.std_kg;
+  estimate_.mass_model_std_kg = 0.0;
+  estimate_.ci_low_kg = known_mass_.mass_kg - kNormal95 * known_mass_.std_kg;
+  estimate_.ci_high_kg = known_mass_.mass_kg + kNormal95 * known_mass_.std_kg;
+  estimate_.mass_known = true;
+  estimate_.plausible = true;
+  if (estimate_.invalid_inputs != 0) return;  // degraded stays degraded
+  estimate_.status = EstimateStatus::kConverged;
+  estimate_.reason = StatusReason::kKnownMass;
+}
+
 void Pipeline::refresh_estimate(const Sample& sample) {
   estimate_.time_us = sample.time_us;
   estimate_.blocks[0] = supervisor_.counters(Block::kLongitudinal);
@@ -387,6 +509,11 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   if (params_.estimator.longitudinal.enabled) needed |= longitudinal_.required_inputs();
   if (params_.estimator.lateral.enabled) needed |= LateralExtractor::kRequired;
   estimate_.invalid_inputs = needed & ~sample.valid;
+  estimate_.learnt_scale = learnt_.scale();
+  estimate_.learnt_scale_std = learnt_.relative_std();
+  estimate_.learnt_evidence = learnt_.state().evidence;
+  estimate_.learnt_changes = learnt_.state().changes;
+  estimate_.known_mass = known_mass_.active;
   refresh_belief();
 }
 
@@ -442,6 +569,7 @@ void Pipeline::refresh_belief() {
     estimate_.status = narrow ? EstimateStatus::kConverged : EstimateStatus::kConverging;
     estimate_.reason = narrow ? StatusReason::kIntervalNarrow : StatusReason::kRefining;
   }
+  if (known_mass_.active) publish_known_mass();
 }
 
 namespace {
@@ -449,11 +577,12 @@ namespace {
 // A copy of the belief updated with the held pairs at lag_s; false when none passes the gates.
 template <class Regressor>
 bool with_held_pairs(Regressor scratch, const LongitudinalExtractor& block, double lag_s,
-                     double information, RegressorState* out) {
+                     double information, double pair_scale, RegressorState* out) {
   bool any = false;
   for (std::size_t i = 0; i < block.pending_count(); ++i) {
     Extraction held = block.provisional(i, lag_s);
     if (!held.has_pair()) continue;
+    divide_force(&held.pair, pair_scale);
     held.pair.information = information;
     scratch.update(held.pair);
     any = true;
@@ -488,9 +617,11 @@ bool Pipeline::provisional_state(RegressorState* out) const {
   const double lags[3] = {best_s, std::max(best_s - spread_s, 0.0),
                           std::min(best_s + spread_s, max_lag_s)};
   for (int k = 0; k < 3; ++k) {
-    const bool ok = params_.estimator.type == RegressorType::kBayes
-                        ? with_held_pairs(bayes_, longitudinal_, lags[k], pair_information_, &at[k])
-                        : with_held_pairs(rls_, longitudinal_, lags[k], pair_information_, &at[k]);
+    const bool ok =
+        params_.estimator.type == RegressorType::kBayes
+            ? with_held_pairs(bayes_, longitudinal_, lags[k], pair_information_, pair_scale_,
+                              &at[k])
+            : with_held_pairs(rls_, longitudinal_, lags[k], pair_information_, pair_scale_, &at[k]);
     if (!ok) return false;
   }
   // The lag's uncertainty adds to the regression's in quadrature, at the interval's quantile.
@@ -507,15 +638,12 @@ bool Pipeline::provisional_state(RegressorState* out) const {
 }
 
 double Pipeline::model_std_kg(double mass_kg) const {
-  // Declared bounds are of a uniform error (std bound / sqrt(3)); the pitch's is a std already.
-  constexpr double kUniformStdPerBound = 0.5773502691896258;
-  constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+  // The lumped scale's std: learnt from the car's known masses, or the datasheet's.
   const VehicleParams& v = params_.vehicle;
+  const double scale_variance =
+      learnt_.learnt() ? learnt_.state().log_scale_var : declared_scale_variance(v);
   const double relative =
-      std::sqrt(std::pow(kUniformStdPerBound * v.wheel_torque_accuracy_fraction, 2) +
-                std::pow(kUniformStdPerBound * v.wheel_radius_accuracy_fraction, 2) +
-                std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2) +
-                std::pow(params_.estimator.model_error_std_fraction, 2));
+      std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' error moves the mass by their share of it, in kg (a truck's low gears).
   const double rotating_kg = kUniformStdPerBound * v.rotating_mass_accuracy_fraction *
                              rotating_sensitivity_.sensitivity_kg();

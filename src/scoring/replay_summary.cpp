@@ -48,6 +48,7 @@ ReplaySummary::Result ReplaySummary::result() const {
   r.ticks = ticks_;
   r.reinitialisations = reinitialisations_;
   r.verdicts = verdicts_;
+  r.learnt = learnt_;
   if (!has_last_) return r;
   r.duration_s = to_seconds(last_.time_us - first_us_);
   r.final_estimate = last_;

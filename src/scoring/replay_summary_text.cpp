@@ -38,6 +38,14 @@ void truth_rows(const ReplaySummary::Result& r, std::ostringstream& out) {
       << (coverage ? fixed(100.0 * *coverage, 1) + "% of ticks" : std::string("n/a")) << "\n";
 }
 
+void learnt_rows(const ReplaySummary::Result::Learnt& l, std::ostringstream& out) {
+  if (l.known_masses > 0) out << "known masses         " << l.known_masses << " declared\n";
+  out << "learnt scale         " << fixed(l.scale, 4) << " (std "
+      << fixed(100.0 * l.relative_std, 2) << " %, from " << l.evidence << " drive"
+      << (l.evidence == 1 ? "" : "s") << " on a known mass"
+      << (l.changes > 0 ? ", " + std::to_string(l.changes) + " changes" : "") << ")\n";
+}
+
 // {"small_delta_force": 11160, "speed": 5400, ...}: why the block took no pair, by tick.
 json::Json refusals_json(const VerdictTally& tally, Block block) {
   json::Json out = json::Json::object();
@@ -104,6 +112,8 @@ std::string_view describe_prior(StatusReason prior_reason) {
       return "prior restored from a saved state";
     case StatusReason::kNoLoadSensor:
       return "no load sensor: the empty mass plus half the payload capacity";
+    case StatusReason::kKnownMass:
+      return "a known mass the user declared";
     default:
       return "no prior";
   }
@@ -138,6 +148,7 @@ std::string replay_table(const ReplaySummary::Result& r, const std::string& esti
     const std::string why = r.verdicts.describe_refusals(static_cast<Block>(b));
     if (!why.empty()) out << "  ticks without pair  " << why << " (verdicts)\n";
   }
+  if (r.learnt) learnt_rows(*r.learnt, out);
   if (r.true_mass_kg) truth_rows(r, out);
   return out.str();
 }
@@ -150,6 +161,13 @@ std::string replay_json(const ReplaySummary::Result& r, const std::string& estim
   j["has_estimate"] = r.has_estimate;
   estimate_fields(r, &j);
   truth_fields(r, &j);
+  if (r.learnt) {
+    j["learnt"] = {{"scale", json::fixed(r.learnt->scale, 6)},
+                   {"scale_std", json::fixed(r.learnt->relative_std, 6)},
+                   {"evidence", r.learnt->evidence},
+                   {"changes", r.learnt->changes},
+                   {"known_masses", r.learnt->known_masses}};
+  }
   return json::dump(j);
 }
 

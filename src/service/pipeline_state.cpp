@@ -20,16 +20,32 @@ std::string unbelievable(const PipelineSnapshot& snapshot, TimeUs saved_time_us,
   return why;
 }
 
+/// The learnt section alone, when the mass section does not fit (StateLoad::learnt_kept).
+void restore_learnt_only(const StateLoad& state,
+                         const std::function<bool(const LearntScaleState&)>& resume_learnt,
+                         StateRestore* out) {
+  if (!state.learnt_kept) return;
+  if (!resume_learnt(state.state.snapshot.learnt)) {
+    out->message += "; what was learnt about the car is refused too";
+    return;
+  }
+  out->message += "; what was learnt about the car is kept (" +
+                  std::to_string(state.state.snapshot.learnt.evidence) + " drives of evidence)";
+}
+
 /// The checks, then `resume(snapshot)`; `pipeline` is read for its parameters and, once
 /// restored, its estimate.
 StateRestore restore_checked(const std::string& path, const Pipeline& pipeline,
-                             const std::function<bool(const PipelineSnapshot&)>& resume) {
+                             const std::function<bool(const PipelineSnapshot&)>& resume,
+                             const std::function<bool(const LearntScaleState&)>& resume_learnt) {
   StateRestore out;
-  const StateLoad state = load_state_file(path, state_fingerprint(pipeline.params()));
+  const StateLoad state = load_state_file(path, state_fingerprint(pipeline.params()),
+                                          learnt_fingerprint(pipeline.params()));
   if (state.status == StateLoadStatus::kMissing) return out;
   out.refused = true;
   if (state.status == StateLoadStatus::kRejected) {
     out.message = state.error + "; starting fresh";
+    restore_learnt_only(state, resume_learnt, &out);
     return out;
   }
   const std::string implausible =
@@ -53,19 +69,22 @@ StateRestore restore_checked(const std::string& path, const Pipeline& pipeline,
                 std::to_string(state.state.snapshot.pairs_used) + " pairs); " +
                 (pipeline.params().suspension.carries_load() ? "a standstill" : "the drive") +
                 " will re-check the load";
+  if (!state.learnt_dropped.empty()) out.message += "; " + state.learnt_dropped;
   return out;
 }
 
 }  // namespace
 
 StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline) {
-  return restore_checked(path, pipeline,
-                         [&](const PipelineSnapshot& s) { return pipeline.restore(s); });
+  return restore_checked(
+      path, pipeline, [&](const PipelineSnapshot& s) { return pipeline.restore(s); },
+      [&](const LearntScaleState& s) { return pipeline.restore_learnt(s); });
 }
 
 StateRestore restore_pipeline_state(const std::string& path, runtime::TickStep& step) {
-  return restore_checked(path, step.pipeline(),
-                         [&](const PipelineSnapshot& s) { return step.restore(s); });
+  return restore_checked(
+      path, step.pipeline(), [&](const PipelineSnapshot& s) { return step.restore(s); },
+      [&](const LearntScaleState& s) { return step.restore_learnt(s); });
 }
 
 StateSave save_pipeline_state(const std::string& path, const PipelineSnapshot& snapshot,
@@ -81,6 +100,7 @@ StateSave save_pipeline_state(const std::string& path, const PipelineSnapshot& s
   state.snapshot = snapshot;
   state.saved_time_us = saved_time_us;
   state.fingerprint = state_fingerprint(params);
+  state.learnt_fingerprint = learnt_fingerprint(params);
   return save_state_file(path, state, error) ? StateSave::kSaved : StateSave::kFailed;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vmass/core/learnt_scale.hpp"
 #include "vmass/core/plausible_band.hpp"
 #include "vmass/core/static_initializer.hpp"
 
@@ -65,11 +66,11 @@ class Check {
     if (n < 0) fail(std::string(what) + " " + std::to_string(n) + " is negative");
   }
   const std::string& reason() const { return reason_; }
-
- private:
   void fail(const std::string& why) {
     if (reason_.empty()) reason_ = why;
   }
+
+ private:
   MassBand band_;
   std::string reason_;
 };
@@ -122,6 +123,22 @@ void check_counters(const PipelineSnapshot& s, Check& c) {
   }
 }
 
+/// What was learnt about the car, and the known mass of the load.
+void check_learnt(const PipelineSnapshot& s, const PipelineParams& params, Check& c) {
+  const LearningParams& learning = params.estimator.learning;
+  if (s.learnt_saved) {
+    const LearntScale prior(learning, std::sqrt(declared_scale_variance(params.vehicle)));
+    if (std::string why = prior.implausible(s.learnt); !why.empty()) c.fail(why);
+  }
+  c.within("pair scale", s.pair_scale, std::exp(-learning.max_abs_log_scale),
+           std::exp(learning.max_abs_log_scale), "");
+  if (!s.known_mass.active) return;
+  c.mass("known mass", s.known_mass.mass_kg);
+  c.positive("known mass std", s.known_mass.std_kg);
+  c.within("known mass's scale", s.known_mass.scale_used, std::exp(-learning.max_abs_log_scale),
+           std::exp(learning.max_abs_log_scale), "");
+}
+
 }  // namespace
 
 std::string implausible_state(const PipelineSnapshot& s, const PipelineParams& params) {
@@ -133,6 +150,7 @@ std::string implausible_state(const PipelineSnapshot& s, const PipelineParams& p
   check_regressor(s, c);
   check_reference(s, params, c);
   check_counters(s, c);
+  check_learnt(s, params, c);
   return c.reason();
 }
 

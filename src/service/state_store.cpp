@@ -18,7 +18,8 @@ namespace vmass::service {
 namespace {
 
 constexpr const char* kMagic = "vmass-state";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;
+constexpr int kVersionWithoutLearnt = 1;  ///< still read: nothing learnt in it
 
 std::uint64_t fnv1a(const char* data, std::size_t size, std::uint64_t h = 0xcbf29ce484222325ull) {
   for (std::size_t i = 0; i < size; ++i) {
@@ -104,6 +105,21 @@ constexpr StateField kStateFields[] = {
     integer("lateral_accepted", [](S& s) { return &s.blocks[1].accepted; }),
     integer("lateral_rejected_innovation", [](S& s) { return &s.blocks[1].rejected_innovation; }),
 };
+/// Format version 2: what is learnt about the car (LearntScale), the known mass of the load.
+constexpr StateField kLearntFields[] = {
+    real("learnt_log_scale", [](S& s) { return &s.learnt.log_scale; }),
+    real("learnt_log_scale_var", [](S& s) { return &s.learnt.log_scale_var; }),
+    integer("learnt_evidence", [](S& s) { return &s.learnt.evidence; }),
+    integer("learnt_changes", [](S& s) { return &s.learnt.changes; }),
+    integer("learnt_pending_outlier_sign", [](S& s) { return &s.learnt.pending_outlier_sign; }),
+    real("learnt_pending_log_scale", [](S& s) { return &s.learnt.pending_log_scale; }),
+    real("learnt_pending_var", [](S& s) { return &s.learnt.pending_var; }),
+    real("pair_scale", [](S& s) { return &s.pair_scale; }),
+    flag("known_mass_active", [](S& s) { return &s.known_mass.active; }),
+    real("known_mass_kg", [](S& s) { return &s.known_mass.mass_kg; }),
+    real("known_mass_std_kg", [](S& s) { return &s.known_mass.std_kg; }),
+    real("known_mass_scale_used", [](S& s) { return &s.known_mass.scale_used; }),
+};
 static_assert(kBlockCount == 2, "kStateFields lists the counters of two blocks");
 /// Optional (files from before the grade check): "nan" or absent = unknown grade.
 constexpr const char* kGradeKey = "reference_grade_accel_mps2";
@@ -123,6 +139,38 @@ std::uint64_t state_fingerprint(const PipelineParams& p) {
   return fnv1a(text.data(), text.size());
 }
 
+namespace {
+
+void write_field(std::string* out, const StateField& field, PipelineSnapshot& s) {
+  switch (field.kind) {
+    case StateField::Kind::kReal:
+      put(out, field.key, *field.real(s));
+      break;
+    case StateField::Kind::kInteger:
+      put_int(out, field.key, *field.integer(s));
+      break;
+    case StateField::Kind::kFlag:
+      put_int(out, field.key, *field.flag(s) ? 1 : 0);
+      break;
+  }
+}
+
+}  // namespace
+
+std::uint64_t learnt_fingerprint(const PipelineParams& p) {
+  const VehicleParams& v = p.vehicle;
+  std::string text = "learnt";
+  for (double x : {v.wheel_radius_m, v.final_drive_ratio, v.driveline_efficiency,
+                   v.pitch_gradient_deg_per_g, v.rotating_mass_kg, v.brake_gain_n_per_pa,
+                   v.drag_area_m2, v.rolling_resistance_coeff, v.gravity_mps2}) {
+    put(&text, "x", x);
+  }
+  for (double x : v.gear_ratios) put(&text, "gear", x);
+  for (double x : v.rotating_mass_by_gear_kg) put(&text, "rotating", x);
+  put(&text, "electric", v.electric_drive ? 1.0 : 0.0);
+  return fnv1a(text.data(), text.size());
+}
+
 std::string format_state(const SavedState& state) {
   PipelineSnapshot s = state.snapshot;  // the table's accessors take a mutable snapshot
   std::string out;
@@ -133,20 +181,11 @@ std::string format_state(const SavedState& state) {
   put_int(&out, "saved_time_us", state.saved_time_us);
   out += std::string("type ") + std::string(regressor_type_name(s.type)) + "\n";
   put_int(&out, "prior_reason", static_cast<int>(s.prior_reason));
-  for (const StateField& field : kStateFields) {
-    switch (field.kind) {
-      case StateField::Kind::kReal:
-        put(&out, field.key, *field.real(s));
-        break;
-      case StateField::Kind::kInteger:
-        put_int(&out, field.key, *field.integer(s));
-        break;
-      case StateField::Kind::kFlag:
-        put_int(&out, field.key, *field.flag(s) ? 1 : 0);
-        break;
-    }
-  }
+  for (const StateField& field : kStateFields) write_field(&out, field, s);
   put(&out, kGradeKey, s.reference_grade_accel_mps2);  // may be nan
+  std::snprintf(hex, sizeof hex, "%016" PRIx64, state.learnt_fingerprint);
+  out += std::string("learnt_fingerprint ") + hex + "\n";
+  for (const StateField& field : kLearntFields) write_field(&out, field, s);
   std::snprintf(hex, sizeof hex, "%016" PRIx64, fnv1a(out.data(), out.size()));
   out += std::string("checksum ") + hex + "\n";
   return out;
@@ -229,6 +268,7 @@ bool starts_a_belief(long long n) {
     case static_cast<long long>(StatusReason::kNoStaticPrior):
     case static_cast<long long>(StatusReason::kRestored):
     case static_cast<long long>(StatusReason::kNoLoadSensor):
+    case static_cast<long long>(StatusReason::kKnownMass):
       return true;
     default:
       return false;
@@ -284,8 +324,10 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   if (std::string e = split_lines(text.substr(0, checksum_at), &values); !e.empty()) {
     return fail(e);
   }
-  if (values[kMagic] != std::to_string(kVersion)) {
-    return fail("not a vmass state file of format version " + std::to_string(kVersion));
+  const std::string version = values[kMagic];
+  if (version != std::to_string(kVersion) && version != std::to_string(kVersionWithoutLearnt)) {
+    return fail("not a vmass state file of format version " + std::to_string(kVersion) + " or " +
+                std::to_string(kVersionWithoutLearnt));
   }
   const ValueReader in{values};
   SavedState out;
@@ -298,6 +340,18 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   if (grade != values.end() && grade->second != "nan" && grade->second != "-nan") {
     if (std::string e = in.real(kGradeKey, &out.snapshot.reference_grade_accel_mps2); !e.empty()) {
       return fail(e);
+    }
+  }
+  out.snapshot.learnt_saved = version == std::to_string(kVersion);
+  if (out.snapshot.learnt_saved) {
+    std::string hex;
+    if (std::string e = in.text("learnt_fingerprint", &hex); !e.empty()) return fail(e);
+    const auto r = std::from_chars(hex.data(), hex.data() + hex.size(), out.learnt_fingerprint, 16);
+    if (r.ec != std::errc() || r.ptr != hex.data() + hex.size()) {
+      return fail("learnt_fingerprint: not hexadecimal");
+    }
+    for (const StateField& field : kLearntFields) {
+      if (std::string e = read_table_field(in, field, &out.snapshot); !e.empty()) return fail(e);
     }
   }
   *state = out;
@@ -358,7 +412,8 @@ bool save_state_file(const std::string& path, const SavedState& state, std::stri
   return true;
 }
 
-StateLoad load_state_file(const std::string& path, std::uint64_t expected_fingerprint) {
+StateLoad load_state_file(const std::string& path, std::uint64_t expected_fingerprint,
+                          std::optional<std::uint64_t> expected_learnt_fingerprint) {
   StateLoad out;
   // A regular file only, opened without blocking: a FIFO or device at the path is refused.
   const io::FileText text = io::read_regular_file(path, io::kMaxStateBytes, "state file");
@@ -373,9 +428,18 @@ StateLoad load_state_file(const std::string& path, std::uint64_t expected_finger
     out.error = path + ": " + error;
     return out;
   }
-  if (out.state.fingerprint != expected_fingerprint) {
+  SavedState& saved = out.state;
+  if (expected_learnt_fingerprint && saved.snapshot.learnt_saved &&
+      saved.learnt_fingerprint != *expected_learnt_fingerprint) {
+    saved.snapshot.learnt_saved = false;
+    out.learnt_dropped = path +
+                         ": what was learnt about the car was learnt with another rolling "
+                         "radius, driveline or resistances; it is forgotten";
+  }
+  if (saved.fingerprint != expected_fingerprint) {
     out.status = StateLoadStatus::kRejected;
     out.error = path + ": saved for other vehicle, suspension or estimator parameters";
+    out.learnt_kept = expected_learnt_fingerprint && saved.snapshot.learnt_saved;
     return out;
   }
   out.status = StateLoadStatus::kLoaded;

@@ -12,6 +12,7 @@
 
 #include "test_drive.hpp"
 #include "vmass/config/config.hpp"
+#include "vmass/service/pipeline_state.hpp"
 #include "vmass/service/state_store.hpp"
 
 namespace vmass {
@@ -63,6 +64,19 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
     EXPECT_EQ(a.blocks[b_].ticks, b.blocks[b_].ticks);
     EXPECT_EQ(a.blocks[b_].accepted, b.blocks[b_].accepted);
   }
+  EXPECT_EQ(a.learnt_saved, b.learnt_saved);
+  EXPECT_EQ(a.learnt.log_scale, b.learnt.log_scale);
+  EXPECT_EQ(a.learnt.log_scale_var, b.learnt.log_scale_var);
+  EXPECT_EQ(a.learnt.evidence, b.learnt.evidence);
+  EXPECT_EQ(a.learnt.changes, b.learnt.changes);
+  EXPECT_EQ(a.learnt.pending_outlier_sign, b.learnt.pending_outlier_sign);
+  EXPECT_EQ(a.learnt.pending_log_scale, b.learnt.pending_log_scale);
+  EXPECT_EQ(a.learnt.pending_var, b.learnt.pending_var);
+  EXPECT_EQ(a.pair_scale, b.pair_scale);
+  EXPECT_EQ(a.known_mass.active, b.known_mass.active);
+  EXPECT_EQ(a.known_mass.mass_kg, b.known_mass.mass_kg);
+  EXPECT_EQ(a.known_mass.std_kg, b.known_mass.std_kg);
+  EXPECT_EQ(a.known_mass.scale_used, b.known_mass.scale_used);
 }
 
 class PipelineSnapshotTest : public ::testing::TestWithParam<const char*> {};
@@ -324,6 +338,72 @@ TEST_F(StateFileTest, CorruptTruncatedOrForeignFilesAreRejected) {
   EXPECT_NE(r.error.find("parameters"), std::string::npos) << r.error;
   EXPECT_EQ(service::load_state_file(p, state_.fingerprint).status,
             service::StateLoadStatus::kLoaded);
+}
+
+// Format version 2 carries what was learnt about the car and the known mass; a version-1 file
+// (before them) still restores its mass and leaves the pipeline's own learnt belief alone.
+TEST_F(StateFileTest, TheLearntSectionRoundTripsAndAVersionOneFileStillLoads) {
+  SavedState learnt = state_;
+  learnt.snapshot.learnt = LearntScaleState{0.0312, 1.7e-4, 2, 0, 1, -0.05, 2e-4};
+  learnt.snapshot.pair_scale = 1.031;
+  learnt.snapshot.known_mass = KnownMass{true, 1712.5, 8.5, 1.031};
+  learnt.learnt_fingerprint = 77;
+  SavedState back;
+  std::string error;
+  ASSERT_TRUE(service::parse_state(service::format_state(learnt), &back, &error)) << error;
+  expect_same(back.snapshot, learnt.snapshot);
+  EXPECT_EQ(back.learnt_fingerprint, 77u);
+
+  // The same state as version 1 wrote it: no learnt section, its own checksum.
+  std::string v1 = service::format_state(state_);
+  v1 = v1.substr(0, v1.find("learnt_fingerprint "));
+  v1.replace(0, v1.find('\n'), "vmass-state 1");
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : v1) h = (h ^ c) * 0x100000001b3ull;
+  char hex[32];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  v1 += std::string("checksum ") + hex + "\n";
+  ASSERT_TRUE(service::parse_state(v1, &back, &error)) << error;
+  EXPECT_FALSE(back.snapshot.learnt_saved);
+  EXPECT_EQ(back.snapshot.nig_mean[0], state_.snapshot.nig_mean[0]);
+}
+
+// Another rolling radius makes what was learnt wrong: it is dropped and the mass kept. Another
+// suspension calibration refuses the mass and keeps what was learnt about the car.
+TEST_F(StateFileTest, EachSectionHasItsOwnFingerprint) {
+  const PipelineParams params = test_params("bayes");
+  const std::uint64_t learnt_fp = service::learnt_fingerprint(params);
+  SavedState learnt = state_;
+  learnt.learnt_fingerprint = learnt_fp;
+  learnt.snapshot.learnt = LearntScaleState{0.02, 1e-4, 1, 0, 0, 0.0, 0.0};
+  const std::string p = path("vmassd.state");
+  std::string error;
+  ASSERT_TRUE(service::save_state_file(p, learnt, &error)) << error;
+
+  PipelineParams retyred = params;
+  retyred.vehicle.wheel_radius_m *= 1.02;
+  EXPECT_NE(service::learnt_fingerprint(retyred), learnt_fp);
+  EXPECT_EQ(service::state_fingerprint(retyred), state_.fingerprint);
+  service::StateLoad r =
+      service::load_state_file(p, state_.fingerprint, service::learnt_fingerprint(retyred));
+  EXPECT_EQ(r.status, service::StateLoadStatus::kLoaded);
+  EXPECT_FALSE(r.state.snapshot.learnt_saved);
+  EXPECT_NE(r.learnt_dropped.find("rolling radius"), std::string::npos) << r.learnt_dropped;
+
+  r = service::load_state_file(p, state_.fingerprint ^ 1, learnt_fp);
+  EXPECT_EQ(r.status, service::StateLoadStatus::kRejected);
+  EXPECT_TRUE(r.learnt_kept);
+  EXPECT_EQ(r.state.snapshot.learnt.log_scale, 0.02);
+
+  // Through the daemon's restore: the mass refused, the learnt scale taken.
+  PipelineParams recalibrated = params;
+  recalibrated.suspension.stiffness_n_per_m *= 1.1;
+  Pipeline pipeline(recalibrated);
+  const service::StateRestore restore = service::restore_pipeline_state(p, pipeline);
+  EXPECT_FALSE(restore.restored);
+  EXPECT_NE(restore.message.find("learnt about the car is kept"), std::string::npos)
+      << restore.message;
+  EXPECT_NEAR(pipeline.learnt_scale().scale(), std::exp(0.02), 1e-12);
 }
 
 TEST(StateFingerprint, ChangesWithTheVehicleNotWithTuning) {

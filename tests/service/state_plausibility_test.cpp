@@ -34,6 +34,9 @@ PipelineSnapshot good_state() {
   s.nig_shape = 152.0;
   s.nig_scale = 1.5e6;
   s.blocks[0] = BlockCounters{4000, 500, 300, 20};
+  s.learnt.log_scale = 0.03;  // one drive on a known mass taught a 3 % scale
+  s.learnt.log_scale_var = 1.2e-4;
+  s.learnt.evidence = 1;
   return s;
 }
 
@@ -129,6 +132,35 @@ TEST(StatePlausibility, TheReferenceStandstillIsChecked) {
   bad.reference_deflection_std_m = -1e-3;
   EXPECT_NE(implausible_state(bad, p).find("reference deflection std"), std::string::npos)
       << implausible_state(bad, p);
+}
+
+// What was learnt about the car and the known mass of the load are checked as the rest is.
+TEST(StatePlausibility, TheLearntSectionAndTheKnownMassAreChecked) {
+  const PipelineParams p = params();
+  PipelineSnapshot s = good_state();
+  s.known_mass = KnownMass{true, 1800.0, 9.0, 1.0};
+  s.pair_scale = std::exp(0.03);
+  EXPECT_EQ(implausible_state(s, p), "");
+  PipelineSnapshot bad = s;
+  bad.learnt.log_scale = 0.6;  // 82 %: a wrong config, not a scale error
+  EXPECT_NE(implausible_state(bad, p).find("learnt scale log"), std::string::npos)
+      << implausible_state(bad, p);
+  bad = s;
+  bad.learnt.log_scale_var = 0.0;
+  EXPECT_NE(implausible_state(bad, p).find("learnt scale variance"), std::string::npos);
+  bad = s;
+  bad.known_mass.mass_kg = 90000.0;
+  EXPECT_NE(implausible_state(bad, p).find("known mass 90000 kg outside"), std::string::npos)
+      << implausible_state(bad, p);
+  bad = s;
+  bad.pair_scale = 2.0;
+  EXPECT_NE(implausible_state(bad, p).find("pair scale 2"), std::string::npos)
+      << implausible_state(bad, p);
+  // A state from before the learnt section: nothing of it is checked, nothing restored.
+  bad = s;
+  bad.learnt = LearntScaleState{};
+  bad.learnt_saved = false;
+  EXPECT_EQ(implausible_state(bad, p), "");
 }
 
 }  // namespace

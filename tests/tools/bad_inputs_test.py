@@ -198,6 +198,10 @@ def cases(tmp):
     out.append(("replay.config_lcm_key_typo", [replay, "--config", write(
         "lcm_key_typo.yaml", BASE_CONFIG + "\nlcm:\n  urll: udpm://239.255.76.67:7667\n"),
         "--samples", samples]))
+    out.append(("replay.known_mass_outside_band", [replay, "--config", config, "--samples",
+                                                   samples, "--known-mass", "10:90000"]))
+    out.append(("replay.known_mass_malformed", [replay, "--config", config, "--samples",
+                                                samples, "--known-mass", "10:1650:-5"]))
     out.append(("replay.stdout_full", [replay, "--config", config, "--samples", samples,
                                        "--out", "-"], "/dev/full"))
     return out

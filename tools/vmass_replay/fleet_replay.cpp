@@ -95,7 +95,7 @@ FleetLogResult replay_one(const std::string& path, const FleetPlan& plan,
   runtime::TickStep step(params);
   scoring::ReplaySummary summary(std::nullopt);
   runtime::TickRun run;
-  play_recording(source, step, std::nullopt, &summary, writer.get(), &run);
+  play_recording(source, step, std::nullopt, {}, &summary, writer.get(), &run);
   if (const runtime::InterfaceSelection* selection = log.interface_selection()) {
     r.other_interface_frames = selection->skipped();  // a failed row's too
   }

@@ -69,15 +69,16 @@ struct Options {
   std::string config_path, samples_path, log_path, truth_path, out_path, plot_path, estimator;
   std::vector<std::string> logs;  ///< --logs: many logs (files or folders)
   std::string log_list, out_dir;
-  std::string interface;  ///< --interface: "" for every interface of the log(s)
-  int jobs = 0;           ///< 0: every core
+  std::string interface;                  ///< --interface: "" for every interface of the log(s)
+  std::vector<std::string> known_masses;  ///< --known-mass TIME:KG[:STD]
+  int jobs = 0;                           ///< 0: every core
   bool json = false;
   bool many() const { return !logs.empty() || !log_list.empty(); }
   const std::string& input_path() const { return log_path.empty() ? samples_path : log_path; }
 };
 
 /// --logs and --log-list, and what goes with them only.
-void add_many_logs_options(CLI::App& app, Options* o, CLI::Option* single_inputs[3]) {
+void add_many_logs_options(CLI::App& app, Options* o, CLI::Option* single_inputs[4]) {
   auto* logs = app.add_option("--logs", o->logs,
                               "many logs of one vehicle: candump -l files, or folders of *.log");
   auto* list = app.add_option("--log-list", o->log_list, "a file naming one log per line");
@@ -85,7 +86,7 @@ void add_many_logs_options(CLI::App& app, Options* o, CLI::Option* single_inputs
       ->check(CLI::Range(1, 4096));
   app.add_option("--out-dir", o->out_dir, "write each log's estimate CSV as DIR/<stem>.csv");
   for (CLI::Option* many : {logs, list}) {
-    for (int i = 0; i < 3; ++i) many->excludes(single_inputs[i]);
+    for (int i = 0; i < 4; ++i) many->excludes(single_inputs[i]);
   }
 }
 
@@ -109,7 +110,11 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
                               "write a PNG plot (needs --out or uses a temporary CSV)");
   app.add_flag("--json", o->json,
                "print the summary as one JSON object instead of a table (many logs: JSON lines)");
-  CLI::Option* single_only[3] = {truth, out, plot};
+  auto* known = app.add_option("--known-mass", o->known_masses,
+                               "TIME:KG[:STD]: the load's mass is known from TIME s after the "
+                               "log's start (a weighbridge ticket); the drive teaches the scale "
+                               "(repeatable; STD default 0.5 % of KG)");
+  CLI::Option* single_only[4] = {truth, out, plot, known};
   add_many_logs_options(app, o, single_only);
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return code;
   if (o->samples_path.empty() && o->log_path.empty() && !o->many()) {
@@ -239,6 +244,12 @@ int replay_one_input(const Options& o, const vmass::Config& config,
                      const vmass::PipelineParams& params) {
   std::optional<vmass::scoring::Truth> truth;
   if (!load_truth(o, &truth)) return kExitUsage;
+  std::vector<vmass::KnownMassEvent> known;
+  if (const std::string bad = parse_known_masses(o.known_masses, params.vehicle, &known);
+      !bad.empty()) {
+    std::cerr << "vmass-replay: " << bad << "\n";
+    return kExitUsage;
+  }
   rt::LogFrameSource* log = nullptr;
   std::unique_ptr<rt::InputSource> source = open_input(o, config, &log);
   if (!source) return kExitUsage;
@@ -255,7 +266,7 @@ int replay_one_input(const Options& o, const vmass::Config& config,
   vmass::scoring::ReplaySummary summary(truth);
   rt::TickRun run;
   const std::string refusal =
-      vmass::play_recording(*source, step, truth, &summary, writer.get(), &run);
+      vmass::play_recording(*source, step, truth, known, &summary, writer.get(), &run);
   report_input(o, *source, log, run);
   if (const std::string failed = source->read_error(); !failed.empty()) {
     std::cerr << "vmass-replay: " << failed << "\n";  // the run did not read its whole input
@@ -276,6 +287,11 @@ int replay_one_input(const Options& o, const vmass::Config& config,
   // The end of the input: the open Bayes batch enters the final estimate (the CSV keeps one
   // row per tick; the summary reports the flushed estimate).
   if (step.flush()) summary.finish(step.pipeline().estimate());
+  const vmass::LearntScale learnt = step.pipeline().learnt_scale_if_ended();
+  if (!known.empty() || learnt.learnt()) {
+    summary.set_learnt({learnt.scale(), learnt.relative_std(), learnt.state().evidence,
+                        learnt.state().changes, static_cast<int>(known.size())});
+  }
   if (writer && !writer->close()) {
     std::cerr << "vmass-replay: " << csv_path << ": write failed\n";
     return kExitFailure;

@@ -6,6 +6,9 @@
 
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "known_mass_option.hpp"
 
 #include "vmass/csv/estimate_csv.hpp"
 #include "vmass/runtime/input_source.hpp"
@@ -16,10 +19,12 @@
 namespace vmass {
 
 /// Plays the whole recording: every tick's estimate into *summary and, when writer is not
-/// null, the CSV. Returns "" on success, else why the truth was refused (checked at tick 0;
-/// nothing is summarised or written after a refusal).
+/// null, the CSV; each known mass declared at the first tick at or after its time (sorted).
+/// Returns "" on success, else why the truth was refused (checked at tick 0; nothing is
+/// summarised or written after a refusal).
 std::string play_recording(runtime::InputSource& source, runtime::TickStep& step,
                            const std::optional<scoring::Truth>& truth,
+                           const std::vector<KnownMassEvent>& known_masses,
                            scoring::ReplaySummary* summary, EstimateCsvWriter* writer,
                            runtime::TickRun* run);
 

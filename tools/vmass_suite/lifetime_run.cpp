@@ -25,6 +25,7 @@ namespace {
 struct Variant {
   sim::Knowledge knowledge;
   bool deflection;
+  bool known_mass;  ///< declared at the start of spec.known_mass_drives
   std::string estimator;
   std::string state_path;
   std::string keep_dir;  ///< "": nothing kept
@@ -32,7 +33,8 @@ struct Variant {
 
 std::string variant_name(const LifetimeSpec& spec, const Variant& v) {
   return spec.vehicle_id + "_" + std::string(sim::knowledge_name(v.knowledge)) + "_" +
-         (v.deflection ? "deflection" : "no_deflection") + "_" + v.estimator;
+         (v.deflection ? "deflection" : "no_deflection") + (v.known_mass ? "_known_mass" : "") +
+         "_" + v.estimator;
 }
 
 std::vector<Variant> variants(const LifetimeSpec& spec, const sim::DrawnVehicle& vehicle,
@@ -43,12 +45,15 @@ std::vector<Variant> variants(const LifetimeSpec& spec, const sim::DrawnVehicle&
   for (sim::Knowledge k : spec.knowledge) {
     for (bool deflection : {true, false}) {
       if (deflection && !reads_load) continue;
-      for (const std::string& estimator : spec.estimators) {
-        Variant v{k, deflection, estimator, "", ""};
-        const std::string name = variant_name(spec, v);
-        v.state_path = work_dir + "/" + name + ".state";
-        if (!spec.keep_dir.empty()) v.keep_dir = spec.keep_dir + "/" + name;
-        out.push_back(v);
+      for (bool known : {false, true}) {
+        if (known && spec.known_mass_drives.empty()) continue;
+        for (const std::string& estimator : spec.estimators) {
+          Variant v{k, deflection, known, estimator, "", ""};
+          const std::string name = variant_name(spec, v);
+          v.state_path = work_dir + "/" + name + ".state";
+          if (!spec.keep_dir.empty()) v.keep_dir = spec.keep_dir + "/" + name;
+          out.push_back(v);
+        }
       }
     }
   }
@@ -61,15 +66,31 @@ PipelineParams params_for(const Config& config, const std::string& estimator) {
   return params;
 }
 
+/// What the lifetime drive learnt (Pipeline::learnt_scale(), after the drive).
+struct Learnt {
+  double scale = 1.0;
+  double scale_std = 0.0;
+  long evidence = 0;
+  long changes = 0;
+};
+
 /// The drive through a pipeline restored from the variant's state file, saved there after it
-/// as vmassd saves it at its stop (the open batch flushed; nothing saved without a prior).
+/// as vmassd saves it at its stop (the open batch flushed; nothing saved without a prior). With
+/// `known_mass_kg` > 0 that mass is declared before its first tick.
 EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Truth& truth,
-                               const std::string& series, bool* restored, std::string* error) {
+                               const std::string& series, double known_mass_kg, double known_std_kg,
+                               bool* restored, Learnt* learnt, std::string* error) {
   auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
   const service::StateRestore restore = service::restore_pipeline_state(v.state_path, *pipeline);
   *restored = restore.restored;
   if (restore.refused) *error = restore.message;
+  if (known_mass_kg > 0.0 && !pipeline->declare_known_mass(known_mass_kg, known_std_kg)) {
+    *error = "known mass " + std::to_string(known_mass_kg) + " kg refused";
+  }
   EstimatorResult r = run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
+  const LearntScale& scale = pipeline->learnt_scale();
+  *learnt =
+      Learnt{scale.scale(), scale.relative_std(), scale.state().evidence, scale.state().changes};
   pipeline->flush();
   const TimeUs saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
   std::string save_error;
@@ -89,6 +110,13 @@ EstimatorResult fresh_drive(const Variant& v, const DecodedDrive& d, const Truth
                             const std::string& series) {
   auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
   return run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
+}
+
+bool is_known_mass_drive(const LifetimeSpec& spec, int index) {
+  for (int i : spec.known_mass_drives) {
+    if (i == index) return true;
+  }
+  return false;
 }
 
 std::string series_path(const LifetimeSpec& spec, const Variant& v, int drive, const char* mode) {
@@ -134,6 +162,7 @@ nlohmann::json drive_json(const LifetimeSpec& spec, const sim::DrawnVehicle& veh
   j["load_change"] = drive.load_change;
   j["payload_change_kg"] = drive.payload_change_kg;
   j["deflection_sensor"] = v.deflection;
+  if (!spec.known_mass_drives.empty()) j["known_mass"] = v.known_mass;
   return j;
 }
 
@@ -185,11 +214,13 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       }
       bool restored = false;
       std::string restore_error;
+      const bool declares = v.known_mass && is_known_mass_drive(spec, drive.index);
+      const double true_mass_kg = result.truth.front().mass_kg;
+      Learnt learnt;
       EstimatorResult life = lifetime_drive(
-          v, d, truth, series_path(spec, v, drive.index, "lifetime"), &restored, &restore_error);
+          v, d, truth, series_path(spec, v, drive.index, "lifetime"), declares ? true_mass_kg : 0.0,
+          spec.known_mass_std_fraction * true_mass_kg, &restored, &learnt, &restore_error);
       life.knowledge = v.knowledge;
-      EstimatorResult fresh = fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"));
-      fresh.knowledge = v.knowledge;
       if (auto m = keep_files(v, drive, d); !m.empty()) {
         out.error = m;
         return out;
@@ -199,7 +230,15 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       j["restored"] = restored;
       if (!restore_error.empty()) j["restore_message"] = without_dir(restore_error, work_dir);
       add_result_fields(life, &j);
+      j["known_mass_declared"] = declares;
+      j["learnt_scale"] = learnt.scale;
+      j["learnt_scale_std"] = learnt.scale_std;
+      j["learnt_evidence"] = learnt.evidence;
+      j["learnt_changes"] = learnt.changes;
       out.json_lines += j.dump() + "\n";
+      if (v.known_mass) continue;  // its fresh drives are the variant's without
+      EstimatorResult fresh = fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"));
+      fresh.knowledge = v.knowledge;
       j = base;
       j["mode"] = "fresh";
       add_result_fields(fresh, &j);

@@ -8,7 +8,9 @@
 //             same file);
 //   fresh     a new pipeline, as every other figure of the suite.
 // For each kind of knowledge, and on a vehicle with a deflection sensor also without it (the
-// same bus without the level message, the config without a suspension section).
+// same bus without the level message, the config without a suspension section); with
+// known_mass_drives each of those also with the true mass declared at the start of those drives
+// (its lifetime rows only: its fresh drives are the variant's without).
 //
 // Thread-safe for distinct work directories.
 #pragma once
@@ -40,6 +42,11 @@ struct LifetimeSpec {
   std::string keep_dir;
   /// "": no series; else per-tick CSVs (10 Hz) of every drive, both modes, in DIR.
   std::string series_dir;
+  /// Non-empty: every variant is also carried with its true mass declared as a known mass
+  /// (Pipeline::declare_known_mass, a weighbridge ticket) at the start of these drives (1-based).
+  std::vector<int> known_mass_drives;
+  /// The declared known mass's relative std (a weighbridge's, or a datasheet's "empty").
+  double known_mass_std_fraction = 0.005;
 };
 
 struct LifetimeResult {

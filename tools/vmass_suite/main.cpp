@@ -8,12 +8,14 @@
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
 //   vmass-suite --lifetime DRIVES [--vehicles N | --vehicle-ids ID,...] [--held-out] [--lives K]
+//               [--known-mass-drives LIST]
 //               [--knowledge ...] [--estimators bayes,rls] [--keep-dir DIR] [--series-dir DIR]
 //               [--jobs J] --out FILE.jsonl
 //   vmass-suite --list-scenarios | --population-hash
 //
 // --lifetime drives each vehicle DRIVES drives in a row through the daemon's state file (loads
-// changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle.
+// changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle;
+// --known-mass-drives also carries each with its true mass declared at those drives.
 //
 // --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
 // --series-dir DIR writes per-tick CSVs (10 Hz) of the runs named by --series RUN,... where
@@ -21,6 +23,7 @@
 // run failed, 2 usage or input error. Not installed: it runs in the build tree, beside
 // vmass-sim and vmass-accuracy-report (scripts/accuracy-suite.sh).
 #include <atomic>
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -84,7 +87,8 @@ struct Options {
   std::string scenarios, estimators, knowledge, realism = "all", estimator_yaml_path, out;
   std::string ablation, series_dir, series, runs;
   int jobs = 0;
-  int lifetime_drives = 0;  ///< > 0: the lifetime mode
+  int lifetime_drives = 0;        ///< > 0: the lifetime mode
+  std::string known_mass_drives;  ///< --lifetime: drives whose true mass is declared
   int lives = 1;
   std::string keep_dir, vehicle_ids;
 };
@@ -226,6 +230,16 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
   if (!realism) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
   base.realism = *realism;
   base.realism_label = o.realism;
+  for (const std::string& d : split(o.known_mass_drives)) {
+    int index = 0;
+    const auto r = std::from_chars(d.data(), d.data() + d.size(), index);
+    if (r.ec != std::errc() || r.ptr != d.data() + d.size() || index < 1 ||
+        index > o.lifetime_drives) {
+      return "--known-mass-drives: '" + d + "' is not a drive index 1.." +
+             std::to_string(o.lifetime_drives);
+    }
+    base.known_mass_drives.push_back(index);
+  }
   std::vector<std::string> ids = split(o.vehicle_ids);
   if (ids.empty()) {
     const std::uint64_t first = o.held_out ? vmass::sim::kHeldOutFirstSeed : o.first_seed;
@@ -341,6 +355,9 @@ int main(int argc, char** argv) {
                  "drives per life: each vehicle drive after drive through the state file")
       ->check(CLI::Range(1, 1000));
   app.add_option("--lives", o.lives, "lives per vehicle (--lifetime)")->check(CLI::Range(1, 100));
+  app.add_option("--known-mass-drives", o.known_mass_drives,
+                 "--lifetime: also carry every variant with its true mass declared as a known "
+                 "mass at the start of these drives (e.g. 1)");
   app.add_option("--vehicle-ids", o.vehicle_ids,
                  "--lifetime: these vehicles (CLASS-SEED,...) instead of the population's");
   app.add_option("--keep-dir", o.keep_dir,

@@ -132,6 +132,15 @@ inline constexpr std::array<Field<BayesParams>, 4> kBayesFields{{
     {"credible_level", &BayesParams::credible_level},
 }};
 
+inline constexpr std::array<Field<LearningParams>, 6> kLearningFields{{
+    {"drift_std_per_drive", &LearningParams::drift_std_per_drive},
+    {"outlier_sigma", &LearningParams::outlier_sigma},
+    {"min_evidence_pairs", &LearningParams::min_evidence_pairs},
+    {"max_evidence_std_fraction", &LearningParams::max_evidence_std_fraction},
+    {"anchor_prior_std_fraction", &LearningParams::anchor_prior_std_fraction},
+    {"max_abs_log_scale", &LearningParams::max_abs_log_scale},
+}};
+
 /// The section's layout: `v.fields(table, params)` for the keys of one level, `v.begin(key)` and
 /// `v.end()` around a nested section. `E` is EstimatorParams or const EstimatorParams.
 template <class Visitor, class E>
@@ -164,6 +173,9 @@ void walk_estimator_section(Visitor& v, E& e) {
   v.end();
   v.begin("bayes");
   v.fields(kBayesFields, e.bayes);
+  v.end();
+  v.begin("learning");
+  v.fields(kLearningFields, e.learning);
   v.end();
 }
 

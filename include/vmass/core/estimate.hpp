@@ -52,6 +52,7 @@ enum class StatusReason : std::uint8_t {
   kMassImplausible,           ///< degraded: no estimate of this load has been in the plausible
                               ///< band (plausible_band.hpp); no mass is published, and
                               ///< implausible_mass_kg says what the estimator holds
+  kKnownMass,                 ///< converged: the user declared the load's mass (KnownMass)
 };
 
 std::string_view status_name(EstimateStatus s);
@@ -97,6 +98,14 @@ struct Estimate {
   double driveline_lag_s = -1.0;
   double accel_noise_std_mps2 = -1.0;
   double force_noise_std_n = -1.0;
+  /// What is learnt about the car across drives (LearntScale): the lumped longitudinal scale
+  /// the pairs' force is divided by, its relative std, the drives whose known mass was
+  /// evidence of it and the changes of the car detected.
+  double learnt_scale = 1.0;
+  double learnt_scale_std = 0.0;
+  long learnt_evidence = 0;
+  long learnt_changes = 0;
+  bool known_mass = false;  ///< the published mass is a mass the user declared
 
   bool has_mass() const { return mass_known; }
   /// Human-readable reason, e.g. "inputs invalid: speed, yaw_rate" (allocates; not for hot paths).

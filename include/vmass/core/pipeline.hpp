@@ -41,7 +41,9 @@
 #include "vmass/core/bayes_estimator.hpp"
 #include "vmass/core/estimate.hpp"
 #include "vmass/core/extraction.hpp"
+#include "vmass/core/known_mass.hpp"
 #include "vmass/core/lateral_extractor.hpp"
+#include "vmass/core/learnt_scale.hpp"
 #include "vmass/core/load_change_monitor.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
 #include "vmass/core/rls_estimator.hpp"
@@ -65,6 +67,7 @@ struct EstimatorParams {
   SupervisorParams supervisor;
   RlsParams rls;
   BayesParams bayes;
+  LearningParams learning;
   double converged_ci_halfwidth_fraction = 0.01;
   /// Ticks over which consecutive pairs share their noise; each pair counts as 1/this of an
   /// independent observation (RegressionPair::information). 0 = automatic: the low-pass's
@@ -128,6 +131,11 @@ struct PipelineSnapshot {
   double reference_grade_accel_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< NaN: unknown
   std::array<BlockCounters, kBlockCount> blocks{};
   TimeUs time_us = 0;  ///< the time of the last step before it was taken
+  // What is learnt about the car across drives, and the known mass of the current load.
+  bool learnt_saved = true;  ///< false: a state from before them (restore keeps the pipeline's)
+  LearntScaleState learnt;
+  KnownMass known_mass;
+  double pair_scale = 1.0;  ///< the scale the current belief's pairs were divided by
 };
 
 class Pipeline {
@@ -164,8 +172,30 @@ class Pipeline {
   /// a power cycle (see the header).
   bool restore(const PipelineSnapshot& snapshot);
 
+  /// The user declares the current load's mass (a weighbridge ticket, "empty, driver only"):
+  /// from the next step the pipeline publishes it and learns the lumped scale from the drive on
+  /// it (KnownMass). std_kg > 0; mass_kg inside the plausible band (else false, nothing
+  /// changed).
+  bool declare_known_mass(double mass_kg, double std_kg);
+  /// Forget what was learnt about the car (back to the config's datasheet values).
+  void reset_learnt();
+  /// Resume what was learnt about the car alone (a state whose mass section does not fit);
+  /// false and nothing changed when LearntScale::restore refuses it.
+  bool restore_learnt(const LearntScaleState& learnt);
+  const LearntScale& learnt_scale() const { return learnt_; }
+  /// What the learnt scale would be if the drive ended now (the known mass's evidence taken).
+  LearntScale learnt_scale_if_ended() const;
+
  private:
+  /// The snapshot is one restore() could take: its type, finite values, counts, learnt section.
+  bool fits(const PipelineSnapshot& snapshot) const;
   void restart(const MassPrior& prior, StatusReason reason);
+  /// The known mass's evidence into the learnt scale (if it has any), and the known mass ends.
+  void end_known_mass();
+  /// A declared known mass becomes the belief's start.
+  void begin_known_mass();
+  /// The known mass as the published estimate.
+  void publish_known_mass();
   /// A completed standstill window's mass (a first window or a load change).
   void on_static_mass(const StaticMass& static_mass, StepResult* result);
   /// The first step after restore(): after a power cycle the mass starts afresh.
@@ -224,6 +254,10 @@ class Pipeline {
   bool restore_pending_ = false;  ///< restore() happened, no step since
   TimeUs restored_time_us_ = 0;   ///< the snapshot's time
   bool load_unchecked_ = false;   ///< a power cycle after restore(), no prior since
+  LearntScale learnt_;
+  KnownMass known_mass_;
+  KnownMass declared_;       ///< active: declared, taken at the next step
+  double pair_scale_ = 1.0;  ///< kappa the belief's longitudinal pairs are divided by
   Estimate estimate_;
 };
 

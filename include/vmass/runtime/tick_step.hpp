@@ -41,6 +41,14 @@ class TickStep {
   PipelineSnapshot snapshot() const { return pipeline_.snapshot(); }
   /// Resumes from a saved state (Pipeline::restore()); false: refused, nothing changed.
   bool restore(const PipelineSnapshot& snapshot) { return pipeline_.restore(snapshot); }
+  /// Resumes what was learnt alone (Pipeline::restore_learnt()).
+  bool restore_learnt(const LearntScaleState& learnt) { return pipeline_.restore_learnt(learnt); }
+  /// The user's known mass of the current load (Pipeline::declare_known_mass()).
+  bool declare_known_mass(double mass_kg, double std_kg) {
+    return pipeline_.declare_known_mass(mass_kg, std_kg);
+  }
+  /// Forget what was learnt about the car (Pipeline::reset_learnt()).
+  void reset_learnt() { pipeline_.reset_learnt(); }
   /// At the end of the input: takes the open batch in (Pipeline::flush()); true when the
   /// estimate changed.
   bool flush() { return pipeline_.flush(); }

@@ -53,8 +53,19 @@ class ReplaySummary {
     long ticks = 0;
     long reinitialisations = 0;
     VerdictTally verdicts;  ///< every block's verdict at every tick (add_events)
+    /// What is learnt about the car after this drive (Pipeline::learnt_scale_if_ended()): set
+    /// by set_learnt() when the run declared a known mass or restored something learnt.
+    struct Learnt {
+      double scale = 1.0;
+      double relative_std = 0.0;
+      long evidence = 0;
+      long changes = 0;
+      int known_masses = 0;  ///< declared during the run
+    };
+    std::optional<Learnt> learnt;
   };
   Result result() const;
+  void set_learnt(const Result::Learnt& learnt) { learnt_ = learnt; }
 
  private:
   void check_tolerances(const Estimate& e);
@@ -71,6 +82,7 @@ class ReplaySummary {
   long covered_ticks_ = 0;
   WithinTracker within_{kReplayTolerances};
   VerdictTally verdicts_;
+  std::optional<Result::Learnt> learnt_;
   bool any_mass_ = false;
   TimeUs first_mass_us_ = 0;
 };

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "vmass/core/pipeline.hpp"
@@ -29,9 +30,17 @@ struct SavedState {
   PipelineSnapshot snapshot;
   TimeUs saved_time_us = 0;       ///< time of the tick the snapshot was taken at (input clock)
   std::uint64_t fingerprint = 0;  ///< state_fingerprint() of the parameters
+  std::uint64_t learnt_fingerprint = 0;  ///< learnt_fingerprint() of the parameters
 };
 
 std::uint64_t state_fingerprint(const PipelineParams& params);
+/// What the learnt section is relative to: the constants the lumped scale multiplies (the
+/// rolling radius, the driveline's ratios and efficiency, the pitch gradient, the rotating
+/// masses, the brake gain, the resistances). A config that changes one of them makes what was
+/// learnt wrong: it is dropped, and the mass section is kept if its own fingerprint holds. The
+/// mass section's fingerprint does not cover the learnt section: another estimator type or
+/// suspension calibration keeps what was learnt about the car.
+std::uint64_t learnt_fingerprint(const PipelineParams& params);
 
 std::string format_state(const SavedState& state);
 /// Parses format_state()'s text; false and *error ("line N: ...") when it is not valid.
@@ -51,9 +60,15 @@ struct StateLoad {
   StateLoadStatus status = StateLoadStatus::kMissing;
   SavedState state;
   std::string error;
+  /// kRejected for the mass section's fingerprint only: the learnt section, which still fits.
+  bool learnt_kept = false;
+  /// The learnt section was dropped (its fingerprint differs): why; "" when it was not.
+  std::string learnt_dropped;
 };
 
-/// Reads and checks a state file against the fingerprint of the current parameters.
-StateLoad load_state_file(const std::string& path, std::uint64_t expected_fingerprint);
+/// Reads and checks a state file against the fingerprints of the current parameters (the
+/// learnt section's only when expected_learnt_fingerprint is given).
+StateLoad load_state_file(const std::string& path, std::uint64_t expected_fingerprint,
+                          std::optional<std::uint64_t> expected_learnt_fingerprint = {});
 
 }  // namespace vmass::service

@@ -1,0 +1,100 @@
+// LearntScale: the vehicle's lumped longitudinal scale kappa, learnt across drives.
+//
+// With a datasheet config, the wheel-torque signal's scale, the rolling radius and the body
+// pitch scale every traction pair's force-to-acceleration ratio by one factor that no single
+// drive can tell from the mass: the pairs read kappa * M. kappa is a constant of the car, and
+// every drive whose mass is known independently (a known mass the user declared: a weighbridge
+// ticket, "empty, driver only") measures it: log kappa = log(M_dynamic / M_known). The belief
+// in log kappa is normal; it starts from the datasheet (the declared accuracies) and each
+// drive's evidence narrows it. The pipeline divides every longitudinal pair's force by kappa.
+//
+// Robust (a wrong ticket, someone who got in at the weighbridge): evidence more than
+// outlier_sigma from the belief counts less (Huber), and the belief is not moved by one alone.
+// A change of the car (new tyres, a retrofit): two such pieces of evidence in a row on the same
+// side, consistent with each other, restart the belief from them. Drift (tyre wear): each power
+// cycle widens the belief a little.
+//
+// Pure; not thread-safe (one owner).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "vmass/core/vehicle_params.hpp"
+
+namespace vmass {
+
+struct LearningParams {
+  /// Per power cycle, the std of the random walk of log kappa (tyre wear, ageing).
+  double drift_std_per_drive = 0.002;
+  /// Evidence further than this many sigma from the belief is an outlier.
+  double outlier_sigma = 3.0;
+  /// A drive's evidence counts only from this many longitudinal pairs on ...
+  long min_evidence_pairs = 100;
+  /// ... and with the regression's own relative std of the mass below this.
+  double max_evidence_std_fraction = 0.03;
+  /// At a known mass the regression restarts from it with this relative std: vague, so that
+  /// the drive's pairs, not the declaration, make the evidence.
+  double anchor_prior_std_fraction = 0.3;
+  /// |log kappa| beyond this is not a scale error but a wrong config or a wrong declaration:
+  /// such evidence, or a saved belief, is refused.
+  double max_abs_log_scale = 0.25;
+
+  std::string validate() const;
+};
+
+/// The relative variance of kappa the config declares (its datasheet belief): the torque
+/// signal's scale and the rolling radius (uniform within their declared bounds) and the
+/// accelerometer's pitch.
+double declared_scale_variance(const VehicleParams& vehicle);
+
+/// The persisted belief in log kappa (plain values).
+struct LearntScaleState {
+  double log_scale = 0.0;
+  double log_scale_var = 0.0;  ///< > 0
+  long evidence = 0;           ///< drives whose evidence was taken
+  long changes = 0;            ///< changes of the car detected
+  /// The last evidence was an outlier: its sign (+1/-1, 0 none), value and variance.
+  long pending_outlier_sign = 0;
+  double pending_log_scale = 0.0;
+  double pending_var = 0.0;
+};
+
+enum class ScaleEvidence : std::uint8_t {
+  kTaken,         ///< consistent with the belief
+  kDownweighted,  ///< an outlier: taken with less weight, remembered
+  kChange,        ///< the second outlier in a row on that side: the belief restarted
+  kRefused,       ///< not finite, or beyond max_abs_log_scale
+};
+
+class LearntScale {
+ public:
+  /// prior_std: the relative std of kappa the config declares (torque scale, radius, pitch).
+  LearntScale(const LearningParams& params, double prior_std);
+
+  double scale() const;  ///< kappa, the belief's median
+  /// The belief's relative std of kappa (the std of log kappa).
+  double relative_std() const;
+  bool learnt() const { return state_.evidence > 0; }
+  const LearntScaleState& state() const { return state_; }
+
+  /// One drive's evidence: log kappa and its variance (> 0).
+  ScaleEvidence add_evidence(double log_scale, double variance);
+  /// The vehicle was switched off and on: the belief widens by the drift.
+  void drift();
+  /// Back to the datasheet (a user's reset).
+  void reset();
+  /// false (and nothing changed) when the state is not a belief this class could hold.
+  bool restore(const LearntScaleState& state);
+  /// "" when the state is one restore() takes, else why not.
+  std::string implausible(const LearntScaleState& state) const;
+
+ private:
+  void take(double log_scale, double variance);
+
+  LearningParams params_;
+  double prior_var_;
+  LearntScaleState state_;
+};
+
+}  // namespace vmass

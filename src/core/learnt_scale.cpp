@@ -1,0 +1,119 @@
+#include "vmass/core/learnt_scale.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vmass/core/param_check.hpp"
+
+namespace vmass {
+
+std::string LearningParams::validate() const {
+  ParamCheck c("estimator.learning");
+  c.non_negative("drift_std_per_drive", drift_std_per_drive);
+  c.positive("outlier_sigma", outlier_sigma);
+  c.at_least("min_evidence_pairs", static_cast<double>(min_evidence_pairs), 1.0);
+  c.positive("max_evidence_std_fraction", max_evidence_std_fraction);
+  c.positive("anchor_prior_std_fraction", anchor_prior_std_fraction);
+  c.in_open_range("max_abs_log_scale", max_abs_log_scale, 0.0, 1.0);
+  return c.message();
+}
+
+double declared_scale_variance(const VehicleParams& v) {
+  constexpr double kUniformStdPerBound = 0.5773502691896258;  // std = bound / sqrt(3)
+  constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+  return std::pow(kUniformStdPerBound * v.wheel_torque_accuracy_fraction, 2) +
+         std::pow(kUniformStdPerBound * v.wheel_radius_accuracy_fraction, 2) +
+         std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2);
+}
+
+LearntScale::LearntScale(const LearningParams& params, double prior_std)
+    : params_(params), prior_var_(std::max(prior_std * prior_std, 1e-10)) {
+  reset();
+}
+
+double LearntScale::scale() const { return std::exp(state_.log_scale); }
+
+double LearntScale::relative_std() const { return std::sqrt(state_.log_scale_var); }
+
+void LearntScale::reset() {
+  state_ = LearntScaleState{};
+  state_.log_scale_var = prior_var_;
+}
+
+void LearntScale::drift() {
+  state_.log_scale_var += params_.drift_std_per_drive * params_.drift_std_per_drive;
+}
+
+void LearntScale::take(double log_scale, double variance) {
+  // The normal-normal update of the belief in log kappa.
+  const double gain = state_.log_scale_var / (state_.log_scale_var + variance);
+  state_.log_scale += gain * (log_scale - state_.log_scale);
+  state_.log_scale_var *= 1.0 - gain;
+}
+
+ScaleEvidence LearntScale::add_evidence(double log_scale, double variance) {
+  if (!std::isfinite(log_scale) || !(variance > 0.0) || !std::isfinite(variance) ||
+      std::abs(log_scale) > params_.max_abs_log_scale) {
+    return ScaleEvidence::kRefused;
+  }
+  const double spread = std::sqrt(state_.log_scale_var + variance);
+  const double z = (log_scale - state_.log_scale) / spread;
+  const long side = z > 0.0 ? 1 : -1;
+  if (std::abs(z) <= params_.outlier_sigma) {
+    take(log_scale, variance);
+    state_.pending_outlier_sign = 0;
+    ++state_.evidence;
+    return ScaleEvidence::kTaken;
+  }
+  // A second outlier on the same side that agrees with the first: the car changed. The belief
+  // restarts from the two (their weighted mean), as wide as they are.
+  if (state_.pending_outlier_sign == side) {
+    const double d = log_scale - state_.pending_log_scale;
+    const double pair_spread = std::sqrt(variance + state_.pending_var);
+    if (std::abs(d) <= params_.outlier_sigma * pair_spread) {
+      const double w1 = 1.0 / state_.pending_var;
+      const double w2 = 1.0 / variance;
+      state_.log_scale = (w1 * state_.pending_log_scale + w2 * log_scale) / (w1 + w2);
+      state_.log_scale_var = 1.0 / (w1 + w2);
+      state_.pending_outlier_sign = 0;
+      ++state_.changes;
+      ++state_.evidence;
+      return ScaleEvidence::kChange;
+    }
+  }
+  // Huber: the outlier is taken as if its variance put it at outlier_sigma.
+  const double inflation = std::abs(z) / params_.outlier_sigma;
+  take(log_scale, (state_.log_scale_var + variance) * inflation * inflation - state_.log_scale_var);
+  state_.pending_outlier_sign = side;
+  state_.pending_log_scale = log_scale;
+  state_.pending_var = variance;
+  ++state_.evidence;
+  return ScaleEvidence::kDownweighted;
+}
+
+std::string LearntScale::implausible(const LearntScaleState& s) const {
+  if (!std::isfinite(s.log_scale) || std::abs(s.log_scale) > params_.max_abs_log_scale) {
+    return "learnt scale log " + std::to_string(s.log_scale) + " beyond its bound";
+  }
+  if (!(s.log_scale_var > 0.0) || !std::isfinite(s.log_scale_var) ||
+      s.log_scale_var > 4.0 * prior_var_ + 1.0) {
+    return "learnt scale variance " + std::to_string(s.log_scale_var) + " out of range";
+  }
+  if (s.evidence < 0 || s.changes < 0 || s.changes > s.evidence) {
+    return "learnt scale counts out of range";
+  }
+  if (s.pending_outlier_sign < -1 || s.pending_outlier_sign > 1 ||
+      !std::isfinite(s.pending_log_scale) || !std::isfinite(s.pending_var) ||
+      (s.pending_outlier_sign != 0 && !(s.pending_var > 0.0))) {
+    return "learnt scale's pending outlier out of range";
+  }
+  return "";
+}
+
+bool LearntScale::restore(const LearntScaleState& s) {
+  if (!implausible(s).empty()) return false;
+  state_ = s;
+  return true;
+}
+
+}  // namespace vmass

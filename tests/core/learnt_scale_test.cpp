@@ -1,0 +1,175 @@
+// What vmass learns about the car across drives: the lumped longitudinal scale's belief
+// (LearntScale) and, through the pipeline, a known mass that makes a drive its evidence.
+#include "vmass/core/learnt_scale.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "synthetic_drive.hpp"
+#include "vmass/core/pipeline.hpp"
+
+namespace vmass {
+namespace {
+
+constexpr double kPriorStd = 0.035;
+
+TEST(LearntScaleTest, StartsFromTheDatasheetAndNarrowsWithEvidence) {
+  LearntScale s(LearningParams{}, kPriorStd);
+  EXPECT_DOUBLE_EQ(s.scale(), 1.0);
+  EXPECT_DOUBLE_EQ(s.relative_std(), kPriorStd);
+  EXPECT_FALSE(s.learnt());
+  EXPECT_EQ(s.add_evidence(std::log(1.04), 0.012 * 0.012), ScaleEvidence::kTaken);
+  EXPECT_TRUE(s.learnt());
+  // The normal update: most of the way to the evidence, narrower than either.
+  EXPECT_NEAR(s.scale(), 1.0 + 0.04 * (kPriorStd * kPriorStd) / (kPriorStd * kPriorStd + 1.44e-4),
+              2e-3);
+  EXPECT_LT(s.relative_std(), 0.012);
+  const double before = s.relative_std();
+  EXPECT_EQ(s.add_evidence(std::log(1.045), 0.012 * 0.012), ScaleEvidence::kTaken);
+  EXPECT_LT(s.relative_std(), before);
+  EXPECT_EQ(s.state().evidence, 2);
+}
+
+TEST(LearntScaleTest, OneOutlierCountsLessAndTwoInARowAreAChange) {
+  LearntScale s(LearningParams{}, kPriorStd);
+  for (int i = 0; i < 5; ++i) s.add_evidence(std::log(1.03), 1e-4);
+  const double settled = s.scale();
+  EXPECT_NEAR(settled, 1.03, 2e-3);
+  // Someone got in at the weighbridge: one drive reads 8 % off. It moves the belief only to
+  // where the evidence is outlier_sigma away.
+  EXPECT_EQ(s.add_evidence(std::log(1.03 * 0.92), 1e-4), ScaleEvidence::kDownweighted);
+  EXPECT_GT(s.scale(), settled - 0.02);
+  EXPECT_EQ(s.state().changes, 0);
+  // A consistent drive clears the pending outlier.
+  EXPECT_EQ(s.add_evidence(std::log(1.03), 1e-4), ScaleEvidence::kTaken);
+  EXPECT_EQ(s.state().pending_outlier_sign, 0);
+  // New tyres: two drives in a row agree on a new scale; the belief restarts from them.
+  EXPECT_EQ(s.add_evidence(std::log(1.08), 1e-4), ScaleEvidence::kDownweighted);
+  EXPECT_EQ(s.add_evidence(std::log(1.082), 1e-4), ScaleEvidence::kChange);
+  EXPECT_NEAR(s.scale(), 1.081, 2e-3);
+  EXPECT_EQ(s.state().changes, 1);
+}
+
+TEST(LearntScaleTest, RefusesWhatNoScaleErrorExplainsAndDriftsWhileParked) {
+  LearntScale s(LearningParams{}, kPriorStd);
+  EXPECT_EQ(s.add_evidence(std::log(1.5), 1e-4), ScaleEvidence::kRefused);
+  EXPECT_EQ(s.add_evidence(std::nan(""), 1e-4), ScaleEvidence::kRefused);
+  EXPECT_EQ(s.add_evidence(0.01, 0.0), ScaleEvidence::kRefused);
+  EXPECT_FALSE(s.learnt());
+  s.add_evidence(0.02, 1e-4);
+  const double var = s.state().log_scale_var;
+  s.drift();
+  EXPECT_NEAR(s.state().log_scale_var, var + 0.002 * 0.002, 1e-12);
+  s.reset();
+  EXPECT_FALSE(s.learnt());
+  EXPECT_DOUBLE_EQ(s.relative_std(), kPriorStd);
+}
+
+TEST(LearntScaleTest, RestoreRefusesAStateItCouldNotHold) {
+  LearntScale s(LearningParams{}, kPriorStd);
+  LearntScaleState bad;
+  bad.log_scale_var = -1.0;
+  EXPECT_FALSE(s.restore(bad));
+  bad.log_scale_var = 1e-4;
+  bad.log_scale = 0.9;
+  EXPECT_FALSE(s.restore(bad));
+  bad.log_scale = 0.02;
+  bad.changes = 3;  // more changes than evidence
+  EXPECT_FALSE(s.restore(bad));
+  bad.evidence = 3;
+  EXPECT_TRUE(s.restore(bad));
+  EXPECT_NEAR(s.scale(), std::exp(0.02), 1e-12);
+}
+
+// The car's force signals read 5 % high (a datasheet torque scale and rolling radius): every
+// traction pair reads 1.05 M. No deflection sensor.
+PipelineParams scaled_car() {
+  PipelineParams p;
+  p.vehicle = testing::test_vehicle();
+  p.vehicle.max_mass_kg = 2200.0;
+  p.suspension.has_sensor = false;
+  p.estimator.type = RegressorType::kBayes;
+  p.estimator.bayes.noise_std_guess_n = 50.0;
+  p.estimator.bayes.batch_size = 50;
+  p.estimator.differencing.filter_cutoff_hz = 5.0;
+  return p;
+}
+
+std::vector<Sample> scaled_drive(double mass_kg, double t0_s, unsigned seed,
+                                 const VehicleParams& v) {
+  testing::LongitudinalDrive d;
+  d.mass_kg = mass_kg;
+  d.force_noise_std_n = 30.0;
+  d.seed = seed;
+  std::vector<Sample> out = testing::longitudinal_samples(d, v, t0_s, t0_s + 120.0, 10.0, 0.0);
+  for (Sample& s : out) {
+    s.set(Input::kWheelTorque, 1.05 * s.wheel_torque_nm);
+    s.set(Input::kBrakePressure, 1.05 * s.brake_pressure_pa);
+  }
+  return out;
+}
+
+const Estimate& drive(Pipeline& pipeline, const std::vector<Sample>& samples) {
+  for (const Sample& s : samples) pipeline.step(s);
+  pipeline.flush();
+  return pipeline.estimate();
+}
+
+TEST(KnownMassTest, APublishedKnownMassTeachesTheScaleThatTheNextDriveUses) {
+  const PipelineParams p = scaled_car();
+  const VehicleParams& v = p.vehicle;
+  // Drive 1 on a weighbridge's 1600 kg: the pipeline publishes it, the drive reads 5 % more.
+  Pipeline first(p);
+  ASSERT_TRUE(first.declare_known_mass(1600.0, 10.0));
+  const Estimate& e1 = drive(first, scaled_drive(1600.0, 0.0, 1, v));
+  EXPECT_EQ(e1.reason, StatusReason::kKnownMass);
+  EXPECT_EQ(e1.status, EstimateStatus::kConverged);
+  EXPECT_DOUBLE_EQ(e1.mass_kg, 1600.0);
+  EXPECT_NEAR(first.learnt_scale_if_ended().scale(), 1.05, 0.01);
+  EXPECT_FALSE(first.learnt_scale().learnt());  // taken when the drive ends
+
+  // Drive 2, a day later, loaded to 1800 kg, nothing declared.
+  Pipeline second(p);
+  ASSERT_TRUE(second.restore(first.snapshot()));
+  const Estimate& e2 = drive(second, scaled_drive(1800.0, 86400.0, 2, v));
+  EXPECT_TRUE(second.learnt_scale().learnt());
+  EXPECT_NEAR(e2.learnt_scale, 1.05, 0.01);
+  EXPECT_EQ(e2.learnt_evidence, 1);
+  EXPECT_NEAR(e2.mass_kg, 1800.0, 0.01 * 1800.0);
+  EXPECT_LE(e2.ci_low_kg, 1800.0);
+  EXPECT_GE(e2.ci_high_kg, 1800.0);
+
+  // The same drive without what drive 1 taught reads the scale's 5 % and a wider interval.
+  Pipeline fresh(p);
+  const Estimate& e3 = drive(fresh, scaled_drive(1800.0, 86400.0, 2, v));
+  EXPECT_NEAR(e3.mass_kg, 1.05 * 1800.0, 0.01 * 1800.0);
+  EXPECT_GT(e3.ci_high_kg - e3.ci_low_kg, 1.5 * (e2.ci_high_kg - e2.ci_low_kg));
+}
+
+TEST(KnownMassTest, AnImplausibleDeclarationIsRefusedAndChangesNothing) {
+  Pipeline pipeline(scaled_car());
+  EXPECT_FALSE(pipeline.declare_known_mass(100.0, 10.0));      // below the empty mass
+  EXPECT_FALSE(pipeline.declare_known_mass(1600.0, 0.0));      // no std
+  EXPECT_FALSE(pipeline.declare_known_mass(std::nan(""), 5));  // not a number
+  const std::vector<Sample> samples = scaled_drive(1600.0, 0.0, 1, scaled_car().vehicle);
+  const Estimate& e = drive(pipeline, samples);
+  EXPECT_NE(e.reason, StatusReason::kKnownMass);
+}
+
+TEST(KnownMassTest, ResetForgetsWhatWasLearnt) {
+  const PipelineParams p = scaled_car();
+  Pipeline first(p);
+  ASSERT_TRUE(first.declare_known_mass(1600.0, 10.0));
+  drive(first, scaled_drive(1600.0, 0.0, 1, p.vehicle));
+  Pipeline second(p);
+  ASSERT_TRUE(second.restore(first.snapshot()));
+  drive(second, scaled_drive(1700.0, 86400.0, 3, p.vehicle));
+  ASSERT_TRUE(second.learnt_scale().learnt());
+  second.reset_learnt();
+  EXPECT_FALSE(second.learnt_scale().learnt());
+  EXPECT_DOUBLE_EQ(second.learnt_scale().scale(), 1.0);
+}
+
+}  // namespace
+}  // namespace vmass
