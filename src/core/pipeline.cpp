@@ -569,7 +569,11 @@ void Pipeline::refresh_belief() {
     estimate_.status = narrow ? EstimateStatus::kConverged : EstimateStatus::kConverging;
     estimate_.reason = narrow ? StatusReason::kIntervalNarrow : StatusReason::kRefining;
   }
-  if (known_mass_.active) publish_known_mass();
+  // A known mass holds for its load: while the drive since a stop says the load changed, the
+  // published estimate is the suspicion's (the challenger's, spanning both), not the declaration.
+  if (known_mass_.active && estimate_.reason != StatusReason::kLoadChangeSuspected) {
+    publish_known_mass();
+  }
 }
 
 namespace {

@@ -274,15 +274,18 @@ int run_main_loop(const MainLoop& m) {
 
 /// The threads of one run, started in order and joined in order.
 struct Threads {
-  std::thread publisher, estimator, receive;
+  std::thread publisher, estimator, receive, command;
 };
 
 Threads start_threads(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
                       const Plan& plan, LcmPublisher& publisher, const StatusContext& ctx,
-                      double status_period_s) {
+                      lcm::LCM& lcm, const LcmSettings& lcm_settings) {
   Threads t;
+  t.command = std::thread(daemon::command_thread, std::ref(lcm),
+                          std::cref(lcm_settings.command_channel), std::ref(shared));
+  pthread_setname_np(t.command.native_handle(), "vmassd-command");
   t.publisher = std::thread(daemon::publisher_thread, std::ref(publisher), std::ref(shared),
-                            std::cref(ctx), status_period_s);
+                            std::cref(ctx), lcm_settings.status_period_s);
   t.estimator = std::thread(daemon::estimator_thread, std::ref(source), std::ref(step),
                             std::ref(shared), std::cref(plan));
   if (!plan.max_speed) {
@@ -304,6 +307,7 @@ void join_threads(Threads& t, Shared& shared) {
   shared.stop_publisher.store(true, std::memory_order_release);
   sem_post(&shared.queue_sem);
   t.publisher.join();
+  t.command.join();  // it stops with the publisher
 }
 
 /// The orderly stop after the threads joined: the input report, the pipeline flushed (the open
@@ -420,7 +424,7 @@ int serve(Run& r, const sigset_t& signals, const PipelineParams& params) {
     r.plan.t0_us = now.realtime_us + (r.plan.mono0_ns - now.mono_ns) / 1000;
   }
   Threads threads =
-      start_threads(r.source, step, shared, r.plan, publisher, ctx, r.settings.lcm.status_period_s);
+      start_threads(r.source, step, shared, r.plan, publisher, ctx, r.lcm, r.settings.lcm);
   SystemdNotifier notifier;
   notifier.notify("READY=1\nSTATUS=" +
                   daemon::summary_line(daemon::gather_status(ctx, shared, false)));

@@ -181,9 +181,16 @@ void publish_health(const runtime::InputSource& source, Shared& shared) {
   shared.health.write(health);
 }
 
+/// What the estimator thread keeps from tick to tick besides the pipeline.
+struct EstimatorLoop {
+  TickStats stats;
+  scoring::VerdictTally verdicts;  ///< every block's verdict at every tick, for the status
+};
+
 void after_tick(const runtime::TickRecord& record, runtime::TickStep& step,
                 const runtime::InputSource& source, Shared& shared, const Plan& plan,
-                TickStats& stats, std::int64_t k) {
+                EstimatorLoop& loop, std::int64_t k) {
+  loop.verdicts.add(record.events);
   publish_record(record, shared, plan.recorded);
   shared.latest.write(record);
   shared.heartbeat.store(k + 1, std::memory_order_release);
@@ -191,25 +198,27 @@ void after_tick(const runtime::TickRecord& record, runtime::TickStep& step,
     shared.snapshot.write(SnapshotSlot{step.snapshot(), record.estimate.time_us, true});
   }
   if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz)) == 0) {
-    shared.timing.write(stats.summary());
+    shared.timing.write(loop.stats.summary());
   }
   if (k % static_cast<std::int64_t>(std::max(1.0, plan.tick_rate_hz / 10.0)) == 0) {
     publish_health(source, shared);  // 10 times a second: the status is read once a second
+    shared.verdicts.write(loop.verdicts);
   }
 }
 
 /// `--speed max`: log time, through the tick driver vmass-replay runs, so the estimates are
 /// identical by construction. Returns the ticks run.
 std::int64_t run_log_time(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
-                          const Plan& plan, TickStats& stats) {
+                          const Plan& plan, EstimatorLoop& loop) {
   StopClock clock(shared.stop);
   runtime::TickDriver driver(source, plan.tick_rate_hz);
   const runtime::TickRun run = driver.run(clock, [&](std::int64_t k, TimeUs t) {
     const std::int64_t start = mono_ns();
-    stats.on_unpaced_tick();
+    loop.stats.on_unpaced_tick();
+    apply_commands(step, shared);
     const runtime::TickRecord& record = step.tick(k, t, source);
-    stats.on_done(mono_ns() - start, false);
-    after_tick(record, step, source, shared, plan, stats, k);
+    loop.stats.on_done(mono_ns() - start, false);
+    after_tick(record, step, source, shared, plan, loop, k);
   });
   if (!run.any_record) spdlog::warn("{}: no records", source.describe());
   shared.inputs.ended.store(true, std::memory_order_release);
@@ -268,15 +277,16 @@ class MonotonicClock final : public runtime::TickClock {
 /// exactly what offline replay sees; a live frame read more than P / 2 after its stamp is
 /// applied at the next tick and counted as late). Returns the ticks passed.
 std::int64_t run_paced(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
-                       const Plan& plan, TickStats& stats) {
-  MonotonicClock clock(plan, shared.stop, stats);
+                       const Plan& plan, EstimatorLoop& loop) {
+  MonotonicClock clock(plan, shared.stop, loop.stats);
   runtime::RingFeed feed(shared.inputs, plan.recorded, shared.stop);
   runtime::TickDriver driver(source, feed, runtime::TickGrid(plan.t0_us, plan.tick_rate_hz));
   const runtime::TickRun run = driver.run(clock, [&](std::int64_t k, TimeUs t) {
+    apply_commands(step, shared);
     const runtime::TickRecord& record = step.tick(k, t, source);
     clock.computed(k);
     shared.late_records.store(driver.progress().late_records, std::memory_order_relaxed);
-    after_tick(record, step, source, shared, plan, stats, k);
+    after_tick(record, step, source, shared, plan, loop, k);
   });
   return run.ticks;
 }
@@ -296,11 +306,12 @@ void receive_thread(runtime::InputSource& source, Shared& shared, const Plan& pl
 void estimator_thread(runtime::InputSource& source, runtime::TickStep& step, Shared& shared,
                       const Plan& plan) {
   apply_realtime(plan.realtime);
-  TickStats stats(plan.period_ns);
-  const std::int64_t ticks = plan.max_speed ? run_log_time(source, step, shared, plan, stats)
-                                            : run_paced(source, step, shared, plan, stats);
+  EstimatorLoop loop{TickStats(plan.period_ns), {}};
+  const std::int64_t ticks = plan.max_speed ? run_log_time(source, step, shared, plan, loop)
+                                            : run_paced(source, step, shared, plan, loop);
   // Final state for the main thread (status, persistence).
-  shared.timing.write(stats.summary());
+  shared.timing.write(loop.stats.summary());
+  shared.verdicts.write(loop.verdicts);
   publish_health(source, shared);
   shared.snapshot.write(SnapshotSlot{step.snapshot(), step.last().estimate.time_us, ticks > 0});
   shared.estimator_done.store(plan.recorded && shared.inputs.ended.load());
@@ -350,6 +361,11 @@ DaemonStatus gather_status(const StatusContext& ctx, Shared& shared, bool stoppi
   s.state_saves = shared.state_saves.load(std::memory_order_relaxed);
   s.state_restored = ctx.state_restored;
   copy_input_health(*ctx.source, shared.health.read(), &s);
+  s.verdicts = shared.verdicts.read();
+  s.commands_received = shared.commands_received.load(std::memory_order_relaxed);
+  const CommandResult command = shared.command_result.read();
+  s.last_command_utime = command.utime;
+  s.last_command_result = command.text;
   const runtime::SourceHealth health = ctx.source->health();
   s.detail = health.detail;
   if (stopping) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <string>
 
+#include "daemon_command.hpp"
 #include "vmass/core/pipeline.hpp"
 #include "vmass/runtime/input_source.hpp"
 #include "vmass/runtime/record_ring.hpp"
@@ -19,6 +20,7 @@
 #include "vmass/runtime/spsc_queue.hpp"
 #include "vmass/runtime/tick_grid.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/scoring/verdict_tally.hpp"
 #include "vmass/service/lcm_publisher.hpp"
 #include "vmass/service/service_config.hpp"
 #include "vmass/service/tick_stats.hpp"
@@ -28,6 +30,8 @@ namespace vmass::service::daemon {
 // receive -> estimator ring, records (~100 B each): 4096 frames are ~1 s of a busy 500 kbit/s
 // bus after the kernel's DBC-id filter, many ticks of slack for the estimator thread.
 constexpr std::size_t kInputQueueRecords = 4096;
+// command -> estimator ring: a person's commands, applied at the next tick.
+constexpr std::size_t kCommandQueue = 16;
 
 struct SnapshotSlot {
   vmass::PipelineSnapshot snapshot;
@@ -37,7 +41,8 @@ struct SnapshotSlot {
 
 /// Everything the threads share. Allocated once at start-up.
 struct Shared {
-  explicit Shared(std::size_t queue_capacity) : inputs(kInputQueueRecords), queue(queue_capacity) {
+  explicit Shared(std::size_t queue_capacity)
+      : inputs(kInputQueueRecords), queue(queue_capacity), commands(kCommandQueue) {
     sem_init(&queue_sem, 0, 0);
   }
   ~Shared() { sem_destroy(&queue_sem); }
@@ -60,7 +65,11 @@ struct Shared {
   runtime::SeqLock<runtime::InputHealthRecord> health;  ///< estimator -> status
   std::atomic<std::int64_t> heartbeat{0};               ///< ticks run (watchdog evidence)
   std::atomic<std::int64_t> state_saves{0};
-  std::atomic<std::int64_t> late_records{0};  ///< applied after the tick they belonged to
+  std::atomic<std::int64_t> late_records{0};         ///< applied after the tick they belonged to
+  runtime::SeqLock<scoring::VerdictTally> verdicts;  ///< estimator -> status: why no pair
+  runtime::SpscQueue<DaemonCommand> commands;        ///< command thread -> estimator
+  std::atomic<std::int64_t> commands_received{0};
+  runtime::SeqLock<CommandResult> command_result;  ///< estimator -> status
 };
 
 /// The fixed parameters of a run.

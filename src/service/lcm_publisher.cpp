@@ -76,6 +76,9 @@ void to_lcm(const runtime::TickRecord& record, std::string_view estimator,
   out->lateral_accepted = lat.accepted;
   out->lateral_rejected = lat.rejected_innovation;
   out->lateral_availability = lat.availability();
+  out->known_mass = e.known_mass;
+  out->learnt_scale = finite_or_zero(e.learnt_scale);
+  out->learnt_scale_std = finite_or_zero(e.learnt_scale_std);
 }
 
 void to_lcm(const PairEvent& event, Block block, TimeUs tick_us, vmass::pair_t* out) {
@@ -134,6 +137,21 @@ void messages_to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->bus_valid = s.bus_valid;
 }
 
+/// Every verdict's ticks per block (status_t's verdict arrays, vmass::PairVerdict order).
+void verdicts_to_lcm(const scoring::VerdictTally& tally, vmass::status_t* out) {
+  constexpr int n = static_cast<int>(scoring::kVerdictCount);
+  out->num_verdicts = n;
+  out->verdict_name.resize(n);
+  out->longitudinal_verdict_ticks.resize(n);
+  out->lateral_verdict_ticks.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    assign(&out->verdict_name[k], verdict_name(static_cast<PairVerdict>(i)));
+    out->longitudinal_verdict_ticks[k] = tally.counts(Block::kLongitudinal)[k];
+    out->lateral_verdict_ticks[k] = tally.counts(Block::kLateral)[k];
+  }
+}
+
 void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->utime = s.last.estimate.time_us;
   out->schema_version = kLcmSchemaVersion;
@@ -184,6 +202,16 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->publish_failures = s.publish_failures;
   out->state_saves = s.state_saves;
   out->state_restored = s.state_restored;
+  verdicts_to_lcm(s.verdicts, out);
+  const Estimate& e = s.last.estimate;
+  out->learnt_scale = s.has_tick ? finite_or_zero(e.learnt_scale) : 1.0;
+  out->learnt_scale_std = s.has_tick ? finite_or_zero(e.learnt_scale_std) : 0.0;
+  out->learnt_evidence = s.has_tick ? e.learnt_evidence : 0;
+  out->learnt_changes = s.has_tick ? e.learnt_changes : 0;
+  out->known_mass = s.has_tick && e.known_mass;
+  out->commands_received = s.commands_received;
+  out->last_command_utime = s.last_command_utime;
+  out->last_command_result = s.last_command_result;
 }
 
 LcmPublisher::LcmPublisher(lcm::LCM& lcm, const LcmSettings& settings, std::string estimator_name)

@@ -26,6 +26,7 @@ std::string LcmSettings::validate() const {
   if (!valid_channel(estimate_channel)) return "lcm.estimate_channel: invalid channel name";
   if (!valid_channel(status_channel)) return "lcm.status_channel: invalid channel name";
   if (!valid_channel(pairs_channel)) return "lcm.pairs_channel: invalid channel name";
+  if (!valid_channel(command_channel)) return "lcm.command_channel: invalid channel name";
   if (estimate_decimation < 1) return "lcm.estimate_decimation: must be >= 1";
   if (!(status_period_s >= 0.01 && status_period_s <= 3600.0)) {
     return "lcm.status_period_s: must be in [0.01, 3600]";

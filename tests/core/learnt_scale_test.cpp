@@ -157,6 +157,30 @@ TEST(KnownMassTest, AnImplausibleDeclarationIsRefusedAndChangesNothing) {
   EXPECT_NE(e.reason, StatusReason::kKnownMass);
 }
 
+// Without a load sensor, a load added at a stop is seen in motion: the declaration made before
+// it is not published over the drive's suspicion, and the pairs after it are not its evidence.
+TEST(KnownMassTest, ALoadChangeInMotionEndsTheKnownMass) {
+  const PipelineParams p = scaled_car();
+  Pipeline pipeline(p);
+  ASSERT_TRUE(pipeline.declare_known_mass(1600.0, 10.0));
+  drive(pipeline, scaled_drive(1600.0, 0.0, 1, p.vehicle));
+  EXPECT_EQ(pipeline.estimate().reason, StatusReason::kKnownMass);
+  std::vector<Sample> stop = testing::standstill_samples(120.0, 180.0, 0.0);
+  drive(pipeline, stop);
+  // While the drive says the load changed, that suspicion is what is published.
+  bool suspected = false;
+  for (const Sample& s : scaled_drive(1950.0, 180.0, 2, p.vehicle)) {
+    pipeline.step(s);
+    suspected |= pipeline.estimate().reason == StatusReason::kLoadChangeSuspected;
+  }
+  pipeline.flush();
+  const Estimate& after = pipeline.estimate();
+  EXPECT_TRUE(suspected);
+  EXPECT_NE(after.reason, StatusReason::kKnownMass);
+  EXPECT_GT(after.mass_kg, 1600.0 + 0.5 * 350.0);
+  EXPECT_GE(after.ci_high_kg, 1.05 * 1950.0 - 0.05 * 1950.0);
+}
+
 TEST(KnownMassTest, ResetForgetsWhatWasLearnt) {
   const PipelineParams p = scaled_car();
   Pipeline first(p);

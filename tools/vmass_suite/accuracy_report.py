@@ -179,6 +179,26 @@ def class_table(rows, estimator, knowledge, out):
         out.append(f"| {scenario} | " + " | ".join(cells) + " |")
 
 
+def starving_gates_table(rows, out):
+    """Which gate starves which vehicle class: the longitudinal block's ticks without a pair, by
+    verdict, as shares of all its ticks (bayes, known scale; the suite's refused_longitudinal)."""
+    rows = [r for r in rows if r.get("estimator") == "bayes" and r.get("knowledge") == "known_scale"
+            and r.get("supported")]
+    by_class = collections.defaultdict(collections.Counter)
+    ticks = collections.Counter()
+    for r in rows:
+        refused = r.get("refused_longitudinal", {})
+        by_class[r.get("class")].update(refused)
+        ticks[r.get("class")] += sum(refused.values()) + (r.get("accepted_longitudinal") or 0)
+    out.append("| class | accepted % | the three gates that refuse most, % of the block's ticks |")
+    out.append("|---|---|---|")
+    for c in sorted(by_class):
+        total = max(1, ticks[c])
+        accepted = 100.0 * (total - sum(by_class[c].values())) / total
+        top = ", ".join(f"{v} {100.0 * n / total:.1f}" for v, n in by_class[c].most_common(3))
+        out.append(f"| {c} | {accepted:.1f} | {top} |")
+
+
 def unsupported_table(rows, out):
     vmass = [r for r in rows if r.get("estimator") == "bayes" and r.get("knowledge") == "known_scale"]
     reasons = collections.Counter()
@@ -275,6 +295,39 @@ def lifetime_summary(rows):
             f"{fmt(conv['lifetime'], 1)} % of lifetime runs, {fmt(conv['fresh'], 1)} % fresh.\n")
 
 
+def drive_group(d):
+    return "1" if d == 1 else "2-4" if d < 5 else "5-9" if d < 10 else "10+"
+
+
+def known_mass_table(known, plain, out):
+    """The lives carried with the true mass declared as a known mass on the first drive(s)
+    (vmass-suite --known-mass-drives), beside the same drives fresh, by group of drives."""
+    declared = sorted({r["drive"] for r in known if r.get("known_mass_declared")})
+    out.append(f"With a known mass declared on drive(s) {', '.join(map(str, declared))} "
+               f"(the learnt scale carried in the state file), beside the same drives fresh:\n")
+    out.append("| deflection sensor | drives | runs | median \\|final\\| %, known mass / fresh | "
+               "p90 % | covers at 20 s / 60 s / end %, known mass | median half-width %, "
+               "known mass / fresh | learnt scale's std %, median |")
+    out.append("|" + "---|" * 8)
+    for sensor in (True, False):
+        for g in ("1", "2-4", "5-9", "10+"):
+            k = [r for r in known if r.get("deflection_sensor") == sensor
+                 and drive_group(r["drive"]) == g]
+            f = [r for r in plain if r.get("deflection_sensor") == sensor and r.get("mode") == "fresh"
+                 and drive_group(r["drive"]) == g]
+            if not k:
+                continue
+            sk, sf = cell_stats(k), cell_stats(f)
+            stds = sorted(100 * r["learnt_scale_std"] for r in k if "learnt_scale_std" in r)
+            med_std = stds[len(stds) // 2] if stds else None
+            out.append(
+                f"| {'yes' if sensor else 'no'} | {g} | {len(k)} | {fmt(sk['median'])} / "
+                f"{fmt(sf['median'])} | {fmt(sk['p90'])} / {fmt(sf['p90'])} | "
+                f"{fmt(sk['cov20'], 0)} / {fmt(sk['cov60'], 0)} / {fmt(sk['covend'], 0)} | "
+                f"{fmt(sk['halfwidth'])} / {fmt(sf['halfwidth'])} | {fmt(med_std)} |")
+    out.append("")
+
+
 def lifetime_section(rows, title, out):
     lives = {(r["vehicle"], r.get("life")) for r in rows}
     drives = max((r["drive"] for r in rows), default=0)
@@ -286,9 +339,13 @@ def lifetime_section(rows, title, out):
             if not sub:
                 continue
             out.append(f"### {est}, {k.replace('_', ' ')}\n")
-            out.append(lifetime_summary(sub))
-            lifetime_table(sub, k, out)
+            plain = [r for r in sub if not r.get("known_mass")]
+            known = [r for r in sub if r.get("known_mass")]
+            out.append(lifetime_summary(plain))
+            lifetime_table(plain, k, out)
             out.append("")
+            if known:
+                known_mass_table(known, plain, out)
 
 
 def plot_series(series_dir, plots_dir, out):
@@ -411,6 +468,10 @@ def main():
     out.append("## Per vehicle class (bayes, known scale): median |final error| % (supported/runs)\n")
     class_table(population, "bayes", "known_scale", out)
     out.append("")
+    if any("refused_longitudinal" in r for r in population):
+        out.append("## Why no pair: the gates that starve each class (bayes, known scale)\n")
+        starving_gates_table(population, out)
+        out.append("")
     out.append("## Unsupported vehicles\n")
     unsupported_table(population, out)
     out.append("")

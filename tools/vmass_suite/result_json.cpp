@@ -45,6 +45,14 @@ void add_result_fields(const EstimatorResult& r, nlohmann::json* out) {
   j["initial_mass_kg"] = number(r.initial_mass_kg);
   j["identified_lag_s"] = number(r.identified_lag_s);
   j["accel_noise_mps2"] = number(r.accel_noise_mps2);
+  // Why each block took no pair: its verdicts other than accepted, ticks (vmass only).
+  for (const Block block : {Block::kLongitudinal, Block::kLateral}) {
+    nlohmann::json refused = nlohmann::json::object();
+    for (const auto& [verdict, ticks] : r.verdicts.refusals(block)) {
+      refused[std::string(verdict_name(verdict))] = ticks;
+    }
+    if (!refused.empty()) j["refused_" + std::string(block_name(block))] = refused;
+  }
 }
 
 }  // namespace vmass::suite

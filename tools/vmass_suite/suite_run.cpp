@@ -123,7 +123,7 @@ EstimatorResult run_pipeline(const std::string& name, Pipeline& pipeline,
   scoring::AccuracyMetrics metrics(truth);
   SeriesWriter series(series_path);
   for (const Sample& s : samples) {
-    pipeline.step(s);
+    r.verdicts.add(pipeline.step(s).events);
     const Estimate& e = pipeline.estimate();
     scoring::EstimatePoint p{e.time_us,
                              e.has_mass(),

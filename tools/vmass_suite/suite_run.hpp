@@ -19,6 +19,7 @@
 
 #include "vmass/core/pipeline.hpp"
 #include "vmass/scoring/accuracy_metrics.hpp"
+#include "vmass/scoring/verdict_tally.hpp"
 #include "vmass/sim/datasheet_config.hpp"
 #include "vmass/sim/realism.hpp"
 #include "vmass/sim/simulator.hpp"
@@ -55,6 +56,7 @@ struct EstimatorResult {
   double initial_mass_kg = AccuracyResult::kNaN;   ///< vmass: the last prior (static or empty)
   double identified_lag_s = AccuracyResult::kNaN;  ///< vmass: the longitudinal block's lag
   double accel_noise_mps2 = AccuracyResult::kNaN;  ///< vmass: its measured noise
+  scoring::VerdictTally verdicts;  ///< vmass: every block's verdict at every tick (why no pair)
 };
 
 struct RunResult {

@@ -25,6 +25,7 @@
 
 #include "vmass/runtime/input_source.hpp"
 #include "vmass/runtime/tick_step.hpp"
+#include "vmass/scoring/verdict_tally.hpp"
 #include "vmass/service/service_config.hpp"
 #include "vmass/service/tick_stats.hpp"
 
@@ -42,7 +43,7 @@ std::string_view daemon_state_name(DaemonState s);
 
 /// Everything status_t reports, gathered by the publisher thread.
 /// The layout of vmass_mass_estimate_t and vmass_status_t (their schema_version field).
-constexpr std::int32_t kLcmSchemaVersion = 2;
+constexpr std::int32_t kLcmSchemaVersion = 3;
 
 /// Health counters of one estimator input (status_t's per-input arrays).
 struct InputHealth {
@@ -77,6 +78,11 @@ struct DaemonStatus {
   std::vector<MessageHealth> messages;
   bool bus_valid = true;
   std::int64_t frames_reordered = 0, frames_late_dropped = 0, time_jumps = 0;
+  // Schema 3 (the learnt scale and the known mass come from last.estimate).
+  scoring::VerdictTally verdicts;  ///< every block's verdict at every tick since start
+  std::int64_t commands_received = 0;
+  std::int64_t last_command_utime = 0;  ///< 0: none yet
+  std::string last_command_result;
 };
 
 /// Reads a source's counters into *status.

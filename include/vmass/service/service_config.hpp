@@ -7,6 +7,7 @@
 //     estimate_channel: VMASS_ESTIMATE
 //     status_channel: VMASS_STATUS
 //     pairs_channel: VMASS_PAIRS
+//     command_channel: VMASS_COMMAND  # vmass.command_t to the daemon (vmass-ctl)
 //     estimate_decimation: 1        # publish every n-th tick's estimate (1 = every tick)
 //     status_period_s: 1.0          # VMASS_STATUS period, s
 //     publish_pairs: false          # debug channel: one vmass.pair_t per tick and block
@@ -41,6 +42,7 @@ struct LcmSettings {
   std::string estimate_channel = "VMASS_ESTIMATE";
   std::string status_channel = "VMASS_STATUS";
   std::string pairs_channel = "VMASS_PAIRS";
+  std::string command_channel = "VMASS_COMMAND";
   int estimate_decimation = 1;
   double status_period_s = 1.0;
   bool publish_pairs = false;
@@ -73,11 +75,12 @@ struct DaemonSettings {
   std::string validate() const;
 };
 
-inline constexpr std::array<Field<LcmSettings>, 7> kLcmFields{{
+inline constexpr std::array<Field<LcmSettings>, 8> kLcmFields{{
     {"url", &LcmSettings::url},
     {"estimate_channel", &LcmSettings::estimate_channel},
     {"status_channel", &LcmSettings::status_channel},
     {"pairs_channel", &LcmSettings::pairs_channel},
+    {"command_channel", &LcmSettings::command_channel},
     {"estimate_decimation", &LcmSettings::estimate_decimation},
     {"status_period_s", &LcmSettings::status_period_s},
     {"publish_pairs", &LcmSettings::publish_pairs},
