@@ -22,10 +22,10 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
 
-all=(fuzz_dbc_parser fuzz_candump_line fuzz_decoder fuzz_config fuzz_state)
+all=(fuzz_dbc_parser fuzz_candump_line fuzz_decoder fuzz_config fuzz_state fuzz_blf)
 # The smoke run's executions per target: about 10 s each on a 2-core CI machine.
 declare -A smoke_runs=([fuzz_dbc_parser]=8000 [fuzz_candump_line]=200000 [fuzz_decoder]=150000
-                       [fuzz_config]=25000 [fuzz_state]=200000)
+                       [fuzz_config]=25000 [fuzz_state]=200000 [fuzz_blf]=30000)
 smoke=0
 if [ "${1:-}" = "--smoke" ]; then
   smoke=1

@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "vmass/io/regular_file.hpp"
+#include "vmass/runtime/blf_log_frame_source.hpp"
 #include "vmass/runtime/converted_log_frame_source.hpp"
 #include "vmass/runtime/text_log_frame_source.hpp"
 
@@ -49,7 +50,7 @@ void LogFrameSource::count_frame(const can::CanFrame& frame, std::int64_t positi
 void LogFrameSource::report_corrupt(std::int64_t position, const std::string& why) {
   if (stats_.corrupt == 0) first_corrupt_ = {position, why};
   ++stats_.corrupt;
-  const std::string where = can::is_converted_format(format_) ? ":record " : ":";
+  const std::string where = can::is_binary_format(format_) ? ":record " : ":";
   if (callback_) callback_({position, path_ + where + std::to_string(position) + ": " + why});
 }
 
@@ -87,6 +88,8 @@ std::unique_ptr<LogFrameSource> open_log_frame_source(const std::string& path, s
   if (can::is_converted_format(format)) return ConvertedLogFrameSource::open(path, format, error);
   file->clear();
   file->seekg(0);
+  if (format == can::LogFormat::kBlf)
+    return std::make_unique<BlfLogFrameSource>(std::move(file), path);
   return std::make_unique<TextLogFrameSource>(std::move(file), path, format,
                                               can::make_log_line_parser(format, require_time));
 }

@@ -1,6 +1,6 @@
 #!/bin/sh
 # One interface of a multi-interface log in the formats written by independent writers
-# (python-can: ASC, BLF, TRC; asammdf: MDF4), BLF and MDF4 through vmass-log-convert: a part of
+# (python-can: ASC, BLF, TRC; asammdf: MDF4), MDF4 through vmass-log-convert: a part of
 # the golden drive on can1 (channel, bus 2) with noise frames of the same ids on can0 (channel,
 # bus 1). vmass-replay --interface can1 gives in every format the estimate it gives for the
 # candump -l log; a name the log does not have is exit 2 with the interfaces it has, numbered

@@ -4,7 +4,7 @@
 //   candump screen      "  can0  123   [4]  DE AD BE EF", optionally "(seconds) " first
 //   Vector ASC          "date ...", "base hex  timestamps absolute", "Begin Triggerblock"
 //   PEAK TRC            ";$FILEVERSION=2.1" or ";##..." headers, "1)  12.3  Rx  0123 8 ..."
-//   Vector BLF          binary, starts with "LOGG"
+//   Vector BLF          binary, starts with "LOGG" (read natively: vmass/runtime/blf_reader.hpp)
 //   ASAM MDF4           binary, starts with "MDF     " (or "UnFinMF " while being written)
 //
 // An LCM log (lcm-logger) and MDF 3 are recognised to say what they are. Pure functions.
@@ -37,9 +37,13 @@ LogFormat detect_log_format(std::string_view head);
 /// "candump -l", "Vector ASC", ...
 std::string_view log_format_name(LogFormat format);
 
-/// True for the binary formats that are read through the converter (vmass-log-convert).
-constexpr bool is_converted_format(LogFormat f) {
+/// True for the binary formats, whose unit is the record (an object, a frame), not the line.
+constexpr bool is_binary_format(LogFormat f) {
   return f == LogFormat::kBlf || f == LogFormat::kMdf4;
 }
+
+/// True for the format read through the converter (vmass-log-convert, asammdf): MDF4. BLF is
+/// read natively (vmass/runtime/blf_reader.hpp).
+constexpr bool is_converted_format(LogFormat f) { return f == LogFormat::kMdf4; }
 
 }  // namespace vmass::can

@@ -1,11 +1,12 @@
-// ConvertedLogFrameSource: the frames of a binary CAN log (Vector BLF, ASAM MDF4 bus logging),
-// read by vmass-log-convert (python-can, asammdf) and handed over a pipe as candump -l lines.
+// ConvertedLogFrameSource: the frames of an ASAM MDF4 bus logging file, read by
+// vmass-log-convert (asammdf) and handed over a pipe as candump -l lines. (Vector BLF is read
+// natively, BlfLogFrameSource; vmass-log-convert still prints it by hand, with python-can.)
 //
 // The converter is the `vmass-log-convert` beside the running executable (else on PATH; the
 // environment variable VMASS_LOG_CONVERT names another), run by its own interpreter line, or by
-// $VMASS_PYTHON when set (a venv with python-can and asammdf). Besides frames it writes
+// $VMASS_PYTHON when set (a venv with asammdf). Besides frames it writes
 //   #!error N WHY     record N of the log could not be read (counted as corrupt, reported)
-//   #!fatal WHY       the log cannot be read at all (a missing module, not a BLF/MDF4 file):
+//   #!fatal WHY       the log cannot be read at all (a missing module, not an MDF4 file):
 //                     open() fails with WHY
 // A converter that ends with a non-zero status without a fatal line is reported as a problem.
 //

@@ -3,9 +3,11 @@
 //
 //   candump -l, candump screen output,   read natively, line by line (TextLogFrameSource)
 //   Vector ASC, PEAK TRC
-//   Vector BLF, ASAM MDF4 bus logging    through vmass-log-convert, which reads them with
-//                                        python-can and asammdf and hands candump -l lines
-//                                        over a pipe (ConvertedLogFrameSource)
+//   Vector BLF                           read natively, object by object, with zlib
+//                                        (BlfLogFrameSource)
+//   ASAM MDF4 bus logging                through vmass-log-convert, which reads it with
+//                                        asammdf and hands candump -l lines over a pipe
+//                                        (ConvertedLogFrameSource)
 //
 // Every format reports the way the candump reader does: a line (record) that cannot be read
 // is counted in stats().corrupt, reported through on_error as "path:line N: why" (binary:
@@ -55,7 +57,7 @@ class LogFrameSource : public FrameSource {
   /// The line (text) or record (binary) number of the last frame read.
   std::int64_t position() const { return position_; }
   /// "line" for the text formats, "record" for the binary ones.
-  std::string_view unit() const { return can::is_converted_format(format_) ? "record" : "line"; }
+  std::string_view unit() const { return can::is_binary_format(format_) ? "record" : "line"; }
   /// The interface (channel) of the last frame read, e.g. "can0".
   virtual std::string_view interface_name() const = 0;
   /// From now on read() gives the frames of interface `name` alone
