@@ -2,13 +2,22 @@
 # Installed once per tool name in /usr/share/bash-completion/completions.
 _vmass_complete() {
   local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD - 1]} tool=${COMP_WORDS[0]}
-  local help sub=""
+  local help sub="" word
   if [[ $tool == vmass-can && $COMP_CWORD -ge 2 ]]; then
     sub=${COMP_WORDS[1]}
+  fi
+  if [[ $tool == vmass-ctl ]]; then  # its subcommand may follow the global options
+    for word in "${COMP_WORDS[@]:1:COMP_CWORD-1}"; do
+      [[ $word == known-mass || $word == reset-learnt ]] && sub=$word
+    done
   fi
   help=$("$tool" ${sub:+"$sub"} --help 2>/dev/null)
   if [[ $tool == vmass-can && $COMP_CWORD -eq 1 ]]; then
     mapfile -t COMPREPLY < <(compgen -W "check decode dump --help --version" -- "$cur")
+    return
+  fi
+  if [[ $tool == vmass-ctl && -z $sub && $cur != -* && $prev != --* ]]; then
+    mapfile -t COMPREPLY < <(compgen -W "known-mass reset-learnt" -- "$cur")
     return
   fi
   case $prev in
@@ -36,4 +45,4 @@ _vmass_complete() {
   fi
 }
 complete -F _vmass_complete vmassd vmass-replay vmass-calibrate vmass-sim vmass-can \
-  vmass-monitor vmass-plot vmass-lcmlog-csv vmass-log-convert vmass-spy vmass-numerics
+  vmass-monitor vmass-ctl vmass-plot vmass-lcmlog-csv vmass-log-convert vmass-spy vmass-numerics

@@ -2,6 +2,10 @@
 // machine), vmassd replays at real speed with two monitors listening, then is SIGKILLed. The
 // --count monitor ends with exit 1 a silence limit (3 s) later, saying why; the plain live view
 // goes on, its rates falling to 0 and its report saying that no estimate came for 10 s.
+//
+// vmass-ctl with the real vmassd (issue 30), in a namespace too: a known mass is accepted (exit
+// 0, vmassd's words), an absurd one refused (exit 1); the monitor shows the datasheet scale
+// before, then the declared mass and vmassd's last answer.
 #include <cstdio>
 #include <regex>
 #include <sstream>
@@ -99,6 +103,54 @@ TEST_F(MonitorProcessTest, SaysVmassdIsGoneAndCountModeFailsAfterASigkill) {
                                                 "running\\?")))
       << last_report;
   EXPECT_NE(last_report.find("daemon    running"), std::string::npos) << last_report;
+}
+
+TEST_F(MonitorProcessTest, ShowsWhatVmassCtlToldVmassd) {
+  if (run("unshare -n true 2> /dev/null") != 0) {
+    GTEST_SKIP() << "unshare -n not permitted here (needs root or user namespaces)";
+  }
+  const std::string config = write_config("lcm:\n  url: \"udpm://239.255.76.67:7667?ttl=0\"\n");
+  const std::string monitor =
+      std::string(VMASS_MONITOR_BIN) + " --config " + config + " --once --timeout 10 > ";
+  const std::string ctl = std::string(VMASS_CTL_BIN) + " --config " + config;
+  const std::string script = path("netns.sh");
+  ASSERT_TRUE(test::write_text(
+      script,
+      "ip link set lo up\n"
+      "ip route add 224.0.0.0/4 dev lo\n" +
+          std::string(VMASSD_BIN) + " --config " + config + " --samples " + csv_ +
+          " --no-restore > " + path("daemon.log") +
+          " 2>&1 &\n"
+          "daemon=$!\n" +
+          monitor + path("before.txt") + " 2>&1\n" + ctl +
+          " known-mass 1800 --note 'monitor process test' > " + path("known.txt") +
+          " 2>&1\n"
+          "echo $? > " +
+          path("known.rc") + "\n" + ctl + " known-mass 99999 > " + path("absurd.txt") +
+          " 2>&1\n"
+          "echo $? > " +
+          path("absurd.rc") + "\n" + monitor + path("after.txt") +
+          " 2>&1\n"
+          "kill -TERM $daemon\n"
+          "wait $daemon\n"));
+  ASSERT_EQ(run("unshare -n sh " + script), 0) << read("daemon.log");
+
+  const std::string before = read("before.txt");
+  EXPECT_NE(before.find("\nlearnt    scale: datasheet (no known mass yet)\n"), std::string::npos)
+      << before;
+  EXPECT_EQ(before.find("\ncommand "), std::string::npos) << before;
+  EXPECT_EQ(read("known.rc"), "0\n") << read("known.txt") << read("daemon.log");
+  EXPECT_EQ(read("known.txt"),
+            "vmassd: accepted: known mass 1800.0 kg (std 9.0 kg) from the next tick\n");
+  EXPECT_EQ(read("absurd.rc"), "1\n") << read("absurd.txt");
+  EXPECT_EQ(read("absurd.txt").rfind("vmassd: refused: known mass 99999.0 kg ", 0), 0u)
+      << read("absurd.txt");
+  const std::string after = read("after.txt");
+  EXPECT_TRUE(std::regex_search(after, std::regex("\nmass      1800.0 kg   known \\(declared\\)")))
+      << after;
+  EXPECT_TRUE(std::regex_search(after, std::regex("\ncommand   refused: known mass 99999.0 kg "
+                                                  "[^]*\\([0-9] s ago\\)\n")))
+      << after;
 }
 
 }  // namespace

@@ -83,5 +83,128 @@ TEST(MonitorReport, WrapsUnderTheFirstItem) {
             "mass      (no estimate received)\ndaemon    (no status received)\n");
 }
 
+TEST(MonitorReport, WhatIsLearntAboutTheCar) {
+  vmass::status_t s{};
+  s.state_name = "running";
+  s.learnt_scale = 1.0;
+  s.learnt_scale_std = 0.054;
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
+                .find("\nlearnt    scale: datasheet (no known mass yet)\ndaemon    running"),
+            std::string::npos);
+  s.learnt_scale = 1.0314;
+  s.learnt_scale_std = 0.0123;
+  s.learnt_evidence = 2;
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
+                .find("\nlearnt    scale 1.031 +- 1.2 % from 2 drives on a known mass\n"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  s.learnt_evidence = 1;
+  s.learnt_changes = 1;
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
+                .find("\nlearnt    scale 1.031 +- 1.2 % from 1 drive on a known mass\n"
+                      "          1 change of the car detected\n"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+}
+
+TEST(MonitorReport, ADeclaredMassSaysSo) {
+  vmass::mass_estimate_t e{};
+  e.mass_known = true;
+  e.mass_kg = 1650.0;
+  e.mass_ci_low_kg = 1633.8;
+  e.mass_ci_high_kg = 1666.2;
+  e.mass_std_kg = 8.25;
+  EXPECT_EQ(monitor_report("memq://", 0.0, 0.0, &e, nullptr).find("known (declared)"),
+            std::string::npos);
+  e.known_mass = true;
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, &e, nullptr)
+                .find("\nmass      1650.0 kg   known (declared)   95% [1633.8, 1666.2] kg   "
+                      "std 8.2 kg\n          mu 0.0 N\n"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, &e, nullptr);
+}
+
+TEST(MonitorReport, TheLastCommandsAnswerAndItsAge) {
+  vmass::status_t s{};
+  s.state_name = "running";
+  s.last_command_result = "accepted: known mass 1650.0 kg (std 8.2 kg) from the next tick";
+  ReportContext context;
+  context.now_utime = 1700000012000000;
+  // No command yet: no line, whatever the text.
+  EXPECT_EQ(monitor_report("memq://", 0.0, 0.0, nullptr, &s, {}, context).find("command"),
+            std::string::npos);
+  s.last_command_utime = 1700000000000000;  // 12 s before now
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s, {}, context)
+                .find("\ncommand   accepted: known mass 1650.0 kg (std 8.2 kg) from the next "
+                      "tick\n          (12 s ago)\ndaemon"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, nullptr, &s, {}, context);
+  context.now_utime = s.last_command_utime + 3 * 3600 * 1000000LL;
+  s.last_command_result = "refused: unknown command '\x1b[2J\nrm' (known_mass, reset_learnt)";
+  const std::string report = monitor_report("memq://", 0.0, 0.0, nullptr, &s, {}, context);
+  EXPECT_NE(report.find("\ncommand   refused: unknown command '?[2J?rm' (known_mass, "
+                        "reset_learnt)\n          (3 h ago)\n"),
+            std::string::npos)
+      << report;
+  EXPECT_EQ(report.find('\x1b'), std::string::npos);  // no escape reaches the terminal
+  context.now_utime = 0;                              // no clock: no age
+  EXPECT_EQ(monitor_report("memq://", 0.0, 0.0, nullptr, &s, {}, context).find(" ago)"),
+            std::string::npos);
+}
+
+TEST(MonitorReport, WhyNoPairCameLately) {
+  NoPairStretch stretch;
+  stretch.span_s = 180.0;
+  stretch.verdict_ticks = {{"small_delta_force", 17800}, {"settling", 200}};
+  ReportContext context;
+  context.no_pair = stretch;
+  EXPECT_EQ(monitor_report("memq://", 0.0, 0.0, nullptr, nullptr, {}, context),
+            "vmass-monitor memq://   estimates 0.0 Hz   status 0.00 Hz\n"
+            "mass      (no estimate received)\n"
+            "why not   no longitudinal pair in 180 s: 17,800 ticks small_delta_force,\n"
+            "          200 settling\n"
+            "daemon    (no status received)\n");
+  stretch.verdict_ticks = {{"small_delta_force", 1234567},
+                           {"speed", 20000},
+                           {"settling", 300},
+                           {"gear_change", 40},
+                           {"not_clean", 5}};
+  stretch.span_s = 12345.6;
+  const std::vector<std::string> items = no_pair_items(stretch);
+  const std::vector<std::string> expected = {
+      "no longitudinal pair in 12346 s:", "1,234,567 ticks small_delta_force,", "20,000 speed,",
+      "300 settling,", "45 in 2 other verdicts"};
+  EXPECT_EQ(items, expected);
+  EXPECT_TRUE(no_pair_items(NoPairStretch{}).empty());
+}
+
+TEST(MonitorReport, EveryNewLineFitsEightyColumnsToo) {
+  vmass::mass_estimate_t e = wide_estimate();
+  e.known_mass = true;
+  vmass::status_t s = wide_status();
+  s.learnt_scale = 12.3456;
+  s.learnt_scale_std = 1.23456;
+  s.learnt_evidence = s.learnt_changes = 1234567890;
+  s.last_command_utime = 1;
+  s.last_command_result = "refused: " + std::string(150, 'x') + " and some words after it";
+  ReportContext context;
+  context.now_utime = 1700000000000000;
+  context.no_pair.span_s = 123456.0;
+  context.no_pair.verdict_ticks = {{"longitudinal_accel", 123456789012},
+                                   {"small_delta_accel", 123456789012},
+                                   {"inputs_invalid", 123456789012},
+                                   {"awaiting_lag", 1}};
+  const std::string report =
+      monitor_report("udpm://239.255.76.67:7667?ttl=0", 2000.1, 1.0, &e, &s, {}, context);
+  std::istringstream lines(report);
+  std::string line;
+  while (std::getline(lines, line)) EXPECT_LE(line.size(), kReportWidth) << line;
+  for (const char* item : {"known (declared)", "scale 12.346 +- 123.5 % from 1234567890 drives",
+                           "123,456,789,012 ticks longitudinal_accel,", "1 in 1 other verdicts",
+                           "and some words after it", "(472222 h ago)", "1234567890 changes"}) {
+    EXPECT_NE(report.find(item), std::string::npos) << item << " missing:\n" << report;
+  }
+}
+
 }  // namespace
 }  // namespace vmass::monitor

@@ -13,7 +13,7 @@
 // got fewer than --count frames before the idle timeout, a read error in the log); 2 usage or
 // input error (a DBC with errors, or with deviations under --strict: check reports every one,
 // decode decodes with what loaded and still exits 2; a log that cannot be opened or is no CAN
-// log, or has no frame on --interface); decode exits 1 when the BLF/MDF4 converter failed on the
+// log, or has no frame on --interface); decode exits 1 when the MDF4 converter failed on the
 // way.
 #include <CLI/CLI.hpp>
 #include <charconv>

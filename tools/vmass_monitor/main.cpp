@@ -18,9 +18,12 @@
 //                  --once/--count, none otherwise)
 //
 // The rates in the report are those of the last 5 s (three status periods when longer:
-// recent_rate.hpp). When no estimate has arrived for three status periods (3 s at least), the
-// report's second line says so ("no estimate for 12 s: is vmassd running?"); --once and
+// recent_rate.hpp). Once the longitudinal block has taken no pair for 30 s of vmassd's ticks,
+// the report says which verdicts those ticks had instead (from the statuses of the last 3 min:
+// verdict_history.hpp). When no estimate has arrived for three status periods (3 s at least),
+// the report's second line says so ("no estimate for 12 s: is vmassd running?"); --once and
 // --count then end with exit 1. --rates measures over its whole listening time.
+#include <time.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -38,6 +41,7 @@
 #include "exit_code.hpp"
 #include "monitor_report.hpp"
 #include "recent_rate.hpp"
+#include "verdict_history.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/service/service_config.hpp"
 
@@ -58,8 +62,9 @@ void on_signal(int) { g_stop = 1; }
 
 int nonfinite(const vmass::mass_estimate_t& m) {
   int n = 0;
-  for (double v : {m.mass_kg, m.mass_std_kg, m.mass_ci_low_kg, m.mass_ci_high_kg, m.mu_n,
-                   m.initial_mass_kg, m.longitudinal_availability, m.lateral_availability}) {
+  for (double v :
+       {m.mass_kg, m.mass_std_kg, m.mass_ci_low_kg, m.mass_ci_high_kg, m.mu_n, m.initial_mass_kg,
+        m.longitudinal_availability, m.lateral_availability, m.learnt_scale, m.learnt_scale_std}) {
     n += std::isfinite(v) ? 0 : 1;
   }
   return n;
@@ -67,12 +72,19 @@ int nonfinite(const vmass::mass_estimate_t& m) {
 
 int nonfinite(const vmass::status_t& s) {
   int n = 0;
-  for (double v : {s.uptime_s, s.mass_kg, s.tick_rate_hz, s.jitter_p50_us, s.jitter_p99_us,
-                   s.jitter_max_us, s.wake_latency_max_us, s.tick_compute_max_us}) {
+  for (double v :
+       {s.uptime_s, s.mass_kg, s.tick_rate_hz, s.jitter_p50_us, s.jitter_p99_us, s.jitter_max_us,
+        s.wake_latency_max_us, s.tick_compute_max_us, s.learnt_scale, s.learnt_scale_std}) {
     n += std::isfinite(v) ? 0 : 1;
   }
   for (double v : s.input_age_s) n += std::isfinite(v) ? 0 : 1;
   return n;
+}
+
+std::int64_t realtime_us() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_REALTIME, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000 + ts.tv_nsec / 1000;
 }
 
 double seconds_between(Clock::time_point from, Clock::time_point to) {
@@ -109,15 +121,20 @@ class Monitor {
   void on_status(const lcm::ReceiveBuffer*, const std::string&, const vmass::status_t* msg) {
     status_ = *msg;
     record(&statuses_, nonfinite(*msg));
+    verdicts_.add(since_start(Clock::now()), *msg);
   }
 
   /// What was received last, laid out for 80 columns (monitor_report.hpp), with the rates of
-  /// the last seconds and a warning when the estimates fell silent.
+  /// the last seconds, a warning when the estimates fell silent, why no pair came lately and
+  /// the last command's age.
   std::string report(const std::string& url) {
     const double now = since_start(Clock::now());
+    vmass::monitor::ReportContext context;
+    context.no_pair = verdicts_.no_pair();
+    context.now_utime = realtime_us();
     return vmass::monitor::monitor_report(
         url, estimates_.recent.rate_hz(now), statuses_.recent.rate_hz(now),
-        estimate_ ? &*estimate_ : nullptr, status_ ? &*status_ : nullptr, silence(now));
+        estimate_ ? &*estimate_ : nullptr, status_ ? &*status_ : nullptr, silence(now), context);
   }
 
   /// How long the channels have been silent at `now_s` (seconds since the start).
@@ -157,6 +174,7 @@ class Monitor {
   std::optional<vmass::mass_estimate_t> estimate_;
   std::optional<vmass::status_t> status_;
   ChannelStats estimates_, statuses_;
+  vmass::monitor::VerdictHistory verdicts_;
 };
 
 struct Options {

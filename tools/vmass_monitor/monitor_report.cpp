@@ -1,5 +1,6 @@
 #include "monitor_report.hpp"
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 
@@ -7,7 +8,7 @@ namespace vmass::monitor {
 namespace {
 
 constexpr std::size_t kLabelWidth = 10;
-constexpr std::string_view kGap = "   ";
+constexpr std::size_t kVerdictsShown = 3;  // the no-pair line's verdicts, the rest summed
 
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char* fmt, ...) {
@@ -28,11 +29,51 @@ std::string fit(const std::string& item, std::size_t room) {
 
 long long ll(std::int64_t v) { return static_cast<long long>(v); }
 
+/// 17800 -> "17,800".
+std::string grouped(std::int64_t v) {
+  std::string digits = std::to_string(v < 0 ? -v : v);
+  for (std::size_t i = digits.size(); i > 3; i -= 3) digits.insert(i - 3, ",");
+  return v < 0 ? "-" + digits : digits;
+}
+
+/// A text from the network with no control character (an escape sequence, a line break) left
+/// to reach the terminal: each one is a '?'.
+std::string printable(std::string text) {
+  for (char& c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) c = '?';
+  }
+  return text;
+}
+
+/// A text from the network as its words (printable).
+std::vector<std::string> words(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = std::min(text.find(' ', start), text.size());
+    if (end > start) out.push_back(printable(text.substr(start, end - start)));
+    start = end + 1;
+  }
+  return out;
+}
+
+/// "45 s", "12 min", "3 h".
+std::string age(double s) {
+  if (s < 120.0) return format("%.0f s", s);
+  if (s < 7200.0) return format("%.0f min", s / 60.0);
+  return format("%.0f h", s / 3600.0);
+}
+
 std::vector<std::string> estimate_items(const vmass::mass_estimate_t& e) {
   if (!e.mass_known) return {"(not known yet)"};
-  return {format("%.1f kg", e.mass_kg),
-          format("95%% [%.1f, %.1f] kg", e.mass_ci_low_kg, e.mass_ci_high_kg),
-          format("std %.1f kg", e.mass_std_kg), format("mu %.1f N", e.mu_n)};
+  std::vector<std::string> items = {format("%.1f kg", e.mass_kg)};
+  if (e.known_mass) items.emplace_back("known (declared)");
+  for (std::string item : {format("95%% [%.1f, %.1f] kg", e.mass_ci_low_kg, e.mass_ci_high_kg),
+                           format("std %.1f kg", e.mass_std_kg), format("mu %.1f N", e.mu_n)}) {
+    items.push_back(std::move(item));
+  }
+  return items;
 }
 
 std::string estimate_lines(const vmass::mass_estimate_t& e) {
@@ -49,6 +90,34 @@ std::string estimate_lines(const vmass::mass_estimate_t& e) {
                                          100.0 * e.lateral_availability, ll(e.lateral_accepted),
                                          ll(e.lateral_rejected))});
   return out;
+}
+
+/// What vmassd learnt about the car: the lumped longitudinal scale and the changes it saw.
+std::string learnt_lines(const vmass::status_t& s) {
+  std::vector<std::string> items;
+  if (s.learnt_evidence <= 0) {
+    items.emplace_back("scale: datasheet (no known mass yet)");
+  } else {
+    items.push_back(format("scale %.3f +- %.1f %% from %lld drive%s on a known mass",
+                           s.learnt_scale, 100.0 * s.learnt_scale_std, ll(s.learnt_evidence),
+                           s.learnt_evidence == 1 ? "" : "s"));
+  }
+  if (s.learnt_changes > 0) {
+    items.push_back(format("%lld change%s of the car detected", ll(s.learnt_changes),
+                           s.learnt_changes == 1 ? "" : "s"));
+  }
+  return wrap_items("learnt", items);
+}
+
+/// vmassd's answer to the last command (vmass-ctl) and how long ago it was sent; "" before one.
+std::string command_lines(const vmass::status_t& s, std::int64_t now_utime) {
+  if (s.last_command_utime == 0) return "";
+  std::vector<std::string> items = words(s.last_command_result);
+  if (now_utime > 0 && now_utime >= s.last_command_utime) {
+    items.push_back("(" + age(static_cast<double>(now_utime - s.last_command_utime) * 1e-6) +
+                    " ago)");
+  }
+  return wrap_items("command", items, kReportWidth, " ");
 }
 
 std::vector<std::string> input_items(const vmass::status_t& s) {
@@ -87,21 +156,21 @@ std::string status_lines(const vmass::status_t& s) {
 }  // namespace
 
 std::string wrap_items(std::string_view label, const std::vector<std::string>& items,
-                       std::size_t width) {
+                       std::size_t width, std::string_view gap) {
   std::string out(label);
   out.resize(std::max(out.size() + 1, kLabelWidth), ' ');
   std::size_t column = out.size();
   bool first_on_line = true;
   for (const std::string& raw : items) {
     const std::string item = fit(raw, width - kLabelWidth);
-    if (!first_on_line && column + kGap.size() + item.size() > width) {
+    if (!first_on_line && column + gap.size() + item.size() > width) {
       out += "\n" + std::string(kLabelWidth, ' ');
       column = kLabelWidth;
       first_on_line = true;
     }
-    if (!first_on_line) out += kGap;
+    if (!first_on_line) out += gap;
     out += item;
-    column += (first_on_line ? 0 : kGap.size()) + item.size();
+    column += (first_on_line ? 0 : gap.size()) + item.size();
     first_on_line = false;
   }
   return out + "\n";
@@ -114,15 +183,41 @@ std::string silence_message(const Silence& silence) {
   return out;
 }
 
+std::vector<std::string> no_pair_items(const NoPairStretch& stretch) {
+  if (stretch.span_s <= 0.0) return {};
+  std::vector<std::string> items = {format("no longitudinal pair in %.0f s", stretch.span_s)};
+  const std::size_t n = stretch.verdict_ticks.size();
+  std::int64_t rest = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& [name, ticks] = stretch.verdict_ticks[i];
+    if (i < kVerdictsShown) {
+      items.push_back(grouped(ticks) + (i == 0 ? " ticks " : " ") + printable(name));
+    } else {
+      rest += ticks;
+    }
+  }
+  if (rest > 0) {
+    items.push_back(format("%s in %zu other verdicts", grouped(rest).c_str(), n - kVerdictsShown));
+  }
+  // "...: a, b, c": the separators at the ends of the phrases, which wrap as a whole.
+  if (items.size() > 1) items[0] += ":";
+  for (std::size_t i = 1; i + 1 < items.size(); ++i) items[i] += ",";
+  return items;
+}
+
 std::string monitor_report(const std::string& url, double estimate_hz, double status_hz,
                            const vmass::mass_estimate_t* estimate, const vmass::status_t* status,
-                           const Silence& silence) {
+                           const Silence& silence, const ReportContext& context) {
   std::string out = wrap_items("vmass-monitor", {url, format("estimates %.1f Hz", estimate_hz),
                                                  format("status %.2f Hz", status_hz)});
   if (const std::string message = silence_message(silence); !message.empty()) {
     out += wrap_items("SILENT", {message});
   }
   out += estimate ? estimate_lines(*estimate) : wrap_items("mass", {"(no estimate received)"});
+  if (const auto why = no_pair_items(context.no_pair); !why.empty()) {
+    out += wrap_items("why not", why, kReportWidth, " ");
+  }
+  if (status) out += learnt_lines(*status) + command_lines(*status, context.now_utime);
   out += status ? status_lines(*status) : wrap_items("daemon", {"(no status received)"});
   return out;
 }
