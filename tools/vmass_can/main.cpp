@@ -27,6 +27,7 @@
 
 #include "exit_code.hpp"
 #include "interface_option.hpp"
+#include "subcommands_formatter.hpp"
 #include "vmass/can/candump.hpp"
 #include "vmass/can/dbc.hpp"
 #include "vmass/can/decoder.hpp"
@@ -39,21 +40,6 @@ namespace {
 
 using namespace vmass::can;
 namespace rt = vmass::runtime;
-
-/// --help-all as help2man reads it for the man page: each subcommand's options under a heading
-/// of their own ("check (validate a DBC file...):", a subsection), laid out as --help lays out
-/// options.
-class SubcommandsFormatter : public CLI::Formatter {
- public:
-  std::string make_expanded(const CLI::App* sub) const override {
-    std::string out = "\n" + sub->get_name() + " (" + sub->get_description() + "):\n";
-    for (const CLI::Option* opt : sub->get_options()) {
-      if (opt == sub->get_help_ptr() || opt == sub->get_help_all_ptr()) continue;
-      out += make_option(opt, opt->get_positional());
-    }
-    return out;
-  }
-};
 
 void print_diagnostics(const DbcParseResult& r) {
   for (const DbcDiagnostic& d : r.diagnostics) std::cerr << d.to_string() << "\n";
@@ -332,7 +318,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // Every subcommand's options at once (the man page is help2man's reading of it); set before
   // the subcommands, which take the formatter along.
-  app.formatter(std::make_shared<SubcommandsFormatter>());
+  app.formatter(std::make_shared<vmass::tools::SubcommandsFormatter>());
   app.set_help_all_flag("--help-all", "print this help with every subcommand's options, then exit");
 
   std::string dbc, log, iface, decode_interface;

@@ -29,7 +29,9 @@
 #include <vmass/command_t.hpp>
 #include <vmass/status_t.hpp>
 
+#include "config_lcm_settings.hpp"
 #include "exit_code.hpp"
+#include "subcommands_formatter.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/service/lcm_publisher.hpp"
 #include "vmass/service/lcm_url.hpp"
@@ -38,20 +40,6 @@
 namespace {
 
 constexpr double kDefaultRelativeStd = 0.005;  // --std: 0.5 % of KG
-
-/// --help-all as help2man reads it for the man page: each subcommand's options under a heading
-/// of its own, laid out as --help lays out options (as vmass-can's).
-class SubcommandsFormatter : public CLI::Formatter {
- public:
-  std::string make_expanded(const CLI::App* sub) const override {
-    std::string out = "\n" + sub->get_name() + " (" + sub->get_description() + "):\n";
-    for (const CLI::Option* opt : sub->get_options()) {
-      if (opt == sub->get_help_ptr() || opt == sub->get_help_all_ptr()) continue;
-      out += make_option(opt, opt->get_positional());
-    }
-    return out;
-  }
-};
 
 /// A number that is finite and above 0; CLI11 names the option in front of the message
 /// ("--std: expected a finite number > 0 (kg), got '0'").
@@ -82,7 +70,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
       "forget what it learnt about the car; prints its answer"};
   app.require_subcommand(1);
   app.fallthrough();  // the global options after the subcommand too
-  app.formatter(std::make_shared<SubcommandsFormatter>());
+  app.formatter(std::make_shared<vmass::tools::SubcommandsFormatter>());
   app.set_help_all_flag("--help-all", "print this help with every subcommand's options, then exit");
   app.add_option("--config", o->config_path,
                  "vmassd's config (for its lcm: URL, command and status channels)");
@@ -118,19 +106,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
 /// The LCM URL and channels: the config's lcm: section, then --lcm-url. False on an error
 /// (said on stderr).
 bool lcm_settings_for(const Options& o, vmass::service::LcmSettings* out) {
-  if (!o.config_path.empty()) {
-    const vmass::ConfigLoad loaded = vmass::load_config(o.config_path);
-    if (!loaded.ok()) {
-      std::fprintf(stderr, "vmass-ctl: %s\n", loaded.error.c_str());
-      return false;
-    }
-    const auto settings = vmass::service::load_service_settings(*loaded.config);
-    if (!settings.ok()) {
-      std::fprintf(stderr, "vmass-ctl: %s\n", settings.error.c_str());
-      return false;
-    }
-    *out = settings.settings.lcm;
-  }
+  if (!vmass::tools::load_lcm_settings(o.config_path, "vmass-ctl", out)) return false;
   if (!o.url.empty()) {
     if (const std::string e = vmass::service::lcm_url_error(o.url); !e.empty()) {
       std::fprintf(stderr, "vmass-ctl: --lcm-url: %s\n", e.c_str());

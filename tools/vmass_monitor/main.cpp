@@ -38,6 +38,7 @@
 #include <vmass/mass_estimate_t.hpp>
 #include <vmass/status_t.hpp>
 
+#include "config_lcm_settings.hpp"
 #include "exit_code.hpp"
 #include "monitor_report.hpp"
 #include "recent_rate.hpp"
@@ -211,19 +212,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
 
 /// The LCM URL and channels: the config's lcm: section, then the flags. False on a config error.
 bool lcm_settings_for(const Options& o, vmass::service::LcmSettings* out) {
-  if (!o.config_path.empty()) {
-    vmass::ConfigLoad loaded = vmass::load_config(o.config_path);
-    if (!loaded.ok()) {
-      std::fprintf(stderr, "vmass-monitor: %s\n", loaded.error.c_str());
-      return false;
-    }
-    const auto settings = vmass::service::load_service_settings(*loaded.config);
-    if (!settings.ok()) {
-      std::fprintf(stderr, "vmass-monitor: %s\n", settings.error.c_str());
-      return false;
-    }
-    *out = settings.settings.lcm;
-  }
+  if (!vmass::tools::load_lcm_settings(o.config_path, "vmass-monitor", out)) return false;
   if (!o.url.empty()) out->url = o.url;
   if (!o.estimate_channel.empty()) out->estimate_channel = o.estimate_channel;
   if (!o.status_channel.empty()) out->status_channel = o.status_channel;
