@@ -112,6 +112,15 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   status.timing.jitter_p99_us = 240.0;
   status.timing.jitter_max_us = 900.0;
   status.state_restored = true;
+  // Schema 3: why no pair (the record's events, five ticks), the learnt scale, a command.
+  for (int i = 0; i < 5; ++i) status.verdicts.add(record.events);
+  status.last.estimate.learnt_scale = 1.031;
+  status.last.estimate.learnt_scale_std = 0.012;
+  status.last.estimate.learnt_evidence = 2;
+  status.last.estimate.known_mass = true;
+  status.commands_received = 1;
+  status.last_command_utime = 1733358000000000;
+  status.last_command_result = "accepted: known mass 1650.0 kg (std 8.2 kg) from the next tick";
   ASSERT_TRUE(publisher.publish_status(status));
   drain(lcm);
 
@@ -178,6 +187,21 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.tick_overruns, 2);
   EXPECT_EQ(s.jitter_p99_us, 240.0);
   EXPECT_TRUE(s.state_restored);
+  EXPECT_EQ(s.schema_version, 3);
+  ASSERT_EQ(s.num_verdicts, static_cast<int>(PairVerdict::kCount));
+  EXPECT_EQ(s.verdict_name[0], "accepted");
+  const auto steering = static_cast<std::size_t>(PairVerdict::kSteering);
+  EXPECT_EQ(s.verdict_name[steering], std::string(verdict_name(PairVerdict::kSteering)));
+  EXPECT_EQ(s.longitudinal_verdict_ticks[0], 5);  // the record's longitudinal pair: accepted
+  EXPECT_EQ(s.lateral_verdict_ticks[steering], 5);
+  EXPECT_EQ(s.lateral_verdict_ticks[0], 0);
+  EXPECT_EQ(s.learnt_scale, 1.031);
+  EXPECT_EQ(s.learnt_scale_std, 0.012);
+  EXPECT_EQ(s.learnt_evidence, 2);
+  EXPECT_TRUE(s.known_mass);
+  EXPECT_EQ(s.commands_received, 1);
+  EXPECT_EQ(s.last_command_utime, 1733358000000000);
+  EXPECT_EQ(s.last_command_result.rfind("accepted: known mass 1650.0 kg", 0), 0u);
   for (double v : {s.uptime_s, s.mass_kg, s.tick_rate_hz, s.jitter_p50_us, s.jitter_p99_us,
                    s.jitter_max_us, s.wake_latency_max_us, s.tick_compute_max_us}) {
     EXPECT_TRUE(std::isfinite(v));
