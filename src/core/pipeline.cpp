@@ -495,7 +495,10 @@ void Pipeline::publish_known_mass() {
   estimate_.mass_known = true;
   estimate_.plausible = true;
   if (estimate_.invalid_inputs != 0) return;  // degraded stays degraded
-  estimate_.status = EstimateStatus::kConverged;
+  // Without a load sensor, a long stop may have changed the load unseen: converged again once
+  // the load monitor's challenger has had its pairs (as for any belief).
+  estimate_.status =
+      load_monitor_.undecided() ? EstimateStatus::kConverging : EstimateStatus::kConverged;
   estimate_.reason = StatusReason::kKnownMass;
 }
 

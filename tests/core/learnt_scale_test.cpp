@@ -167,12 +167,18 @@ TEST(KnownMassTest, ALoadChangeInMotionEndsTheKnownMass) {
   EXPECT_EQ(pipeline.estimate().reason, StatusReason::kKnownMass);
   std::vector<Sample> stop = testing::standstill_samples(120.0, 180.0, 0.0);
   drive(pipeline, stop);
-  // While the drive says the load changed, that suspicion is what is published.
+  // After the stop the declaration is no longer `converged` (the load may have changed
+  // unseen); while the drive says the load changed, that suspicion is what is published.
   bool suspected = false;
+  bool converged_declared = false;
   for (const Sample& s : scaled_drive(1950.0, 180.0, 2, p.vehicle)) {
     pipeline.step(s);
-    suspected |= pipeline.estimate().reason == StatusReason::kLoadChangeSuspected;
+    const Estimate& e = pipeline.estimate();
+    suspected |= e.reason == StatusReason::kLoadChangeSuspected;
+    converged_declared |=
+        e.reason == StatusReason::kKnownMass && e.status == EstimateStatus::kConverged;
   }
+  EXPECT_FALSE(converged_declared);
   pipeline.flush();
   const Estimate& after = pipeline.estimate();
   EXPECT_TRUE(suspected);
