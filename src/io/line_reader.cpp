@@ -6,20 +6,13 @@
 #include <ios>
 #include <system_error>
 
+#include "vmass/io/stream_failure.hpp"
+
 namespace vmass::io {
 namespace {
 
 /// Bytes taken from the stream at most at once, beside the longest line kept.
 constexpr std::size_t kBlockBytes = 64 * 1024;
-
-/// The reason of a stream's read failure: libstdc++ carries the read's errno in the code
-/// (system or generic category).
-std::string read_failure(const std::ios_base::failure& e) {
-  const std::error_code& code = e.code();
-  const bool is_errno =
-      code.category() == std::system_category() || code.category() == std::generic_category();
-  return code.value() > 0 && is_errno ? std::strerror(code.value()) : e.what();
-}
 
 }  // namespace
 

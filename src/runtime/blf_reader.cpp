@@ -26,6 +26,8 @@
 #include <utility>
 #include <vector>
 
+#include "vmass/io/stream_failure.hpp"
+
 namespace vmass::runtime {
 namespace {
 
@@ -296,13 +298,7 @@ bool to_frame(const Message& m, double time_s, can::CanFrame* f, std::string* wh
   return true;
 }
 
-/// The system's reason of a stream's read failure (libstdc++ carries errno in the code).
-std::string read_failure(const std::ios_base::failure& e) {
-  const std::error_code& code = e.code();
-  const bool is_errno =
-      code.category() == std::system_category() || code.category() == std::generic_category();
-  return code.value() > 0 && is_errno ? std::strerror(code.value()) : e.what();
-}
+using io::read_failure;
 
 }  // namespace
 
