@@ -7,6 +7,7 @@
 
 #include "vmass/sim/random_stream.hpp"
 #include "vmass/sim/suspension.hpp"
+#include "vmass/sim/truck_population.hpp"
 
 namespace vmass::sim {
 
@@ -353,9 +354,11 @@ bool parse_vehicle_id(const std::string& id, DrawnVehicle* out, std::string* err
     *error = "vehicle id '" + id + "' is not <class>-<seed>";
     return false;
   }
-  const auto c = parse_vehicle_class(id.substr(0, dash));
-  if (!c) {
-    *error = "vehicle id '" + id + "': unknown class '" + id.substr(0, dash) + "'";
+  const std::string class_text = id.substr(0, dash);
+  const bool tractor = class_text == kTractorIdPrefix;
+  const auto c = parse_vehicle_class(class_text);
+  if (!c && !tractor) {
+    *error = "vehicle id '" + id + "': unknown class '" + class_text + "'";
     return false;
   }
   const std::string seed_text = id.substr(dash + 1);
@@ -363,7 +366,8 @@ bool parse_vehicle_id(const std::string& id, DrawnVehicle* out, std::string* err
     *error = "vehicle id '" + id + "': the seed must be a non-negative integer";
     return false;
   }
-  *out = draw_vehicle(*c, std::stoull(seed_text));
+  const std::uint64_t seed = std::stoull(seed_text);
+  *out = tractor ? draw_tractor(seed) : draw_vehicle(*c, seed);
   return true;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <utility>
 
 #include "paper_roads.hpp"
@@ -262,6 +263,7 @@ struct Built {
   double duration_s = 200.0;
   std::vector<LoadItem> payload;
   std::vector<LoadChange> changes;
+  bool no_brakes = false;  ///< the driver never brakes (coasts whatever the speed error)
 };
 
 using Builder = std::function<void(const DrawnVehicle&, RandomStream&, ProfileBuilder&,
@@ -271,6 +273,7 @@ struct ScenarioEntry {
   const char* name;
   const char* description;
   Builder build;
+  bool truck_drive = false;  ///< the truck population's own drives (not in the car suite)
 };
 
 void typical(const DrawnVehicle& d, RandomStream& rng, Built& out) {
@@ -433,6 +436,112 @@ void sensor_faults_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b
                   {K::kMalformedBurst, "powertrain", 130.0, 0.5}};
 }
 
+// --- truck drives (issue 29): what a tractor-trailer's recordings hold ----------------------
+
+// Pulling away with the accelerator floored: a reference no truck follows, so the torque (then
+// the power) sits at its limit for 30-60 s, then a long cruise held by the speed controller's
+// small corrections.
+void truck_launch(ProfileBuilder& b, RandomStream& rng) {
+  b.stand(rng.uniform(3, 8));
+  b.change_to(200 * kKmh, 6.0);
+  b.cruise(300);
+}
+
+// A grade over distance that rises and falls sinusoidally (amplitude and wavelength drawn).
+PiecewiseLinear rolling_grade(RandomStream& rng, double length_m) {
+  const double amplitude = rng.uniform(1.5, 3.0);
+  const double wavelength = rng.uniform(800, 1600);
+  const double phase = rng.uniform(0.0, 6.283185307179586);
+  std::vector<PiecewiseLinear::Point> points;
+  for (double x = 0.0; x <= length_m; x += 50.0) {
+    points.push_back({x, amplitude * std::sin(6.283185307179586 * x / wavelength + phase)});
+  }
+  return slope_percent(points);
+}
+
+void truck_launch_flat_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
+                           PopulationRun&, Built& o) {
+  typical(d, g, o);
+  truck_launch(b, g);
+  o.duration_s = 240.0;
+}
+
+void truck_launch_grade_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
+                            PopulationRun& r, Built& o) {
+  typical(d, g, o);
+  truck_launch(b, g);
+  o.duration_s = 240.0;
+  r.physics.road.grade_rad = PiecewiseLinear(3.0 * kDeg);
+}
+
+void truck_launch_rolling_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
+                              PopulationRun& r, Built& o) {
+  typical(d, g, o);
+  truck_launch(b, g);
+  o.duration_s = 240.0;
+  r.physics.road.grade_rad = rolling_grade(g, 8000.0);
+}
+
+// One gear throughout and never a brake: rolling at 40-55 km/h in top gear, the accelerator
+// floored to cruising speed (the torque at its limit), then a cruise over rolling hills where
+// the speed drifts on the downhills and sags on the climbs.
+void truck_one_gear_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
+                        Built& o) {
+  typical(d, g, o);
+  b.start_at(g.uniform(40, 55) * kKmh / 0.75);
+  r.physics.initial_speed_mps = b.speed();
+  PowertrainParams& gearbox = r.physics.vehicle.powertrain;
+  gearbox.hold_gear = gearbox.gear_count();
+  b.change_to(200 * kKmh, 6.0);
+  while (b.time() < 240) {
+    b.cruise(g.uniform(20, 40));
+    b.change_to(g.uniform(70, 80) * kKmh / 0.75, 0.3);
+  }
+  o.duration_s = 240.0;
+  r.physics.road.grade_rad = rolling_grade(g, 7000.0);
+  o.no_brakes = true;
+}
+
+// Pulling away to a town speed, holding it, stopping: `cycles` times.
+void stop_and_go(ProfileBuilder& b, RandomStream& rng, int cycles) {
+  for (int i = 0; i < cycles; ++i) {
+    b.change_to(rng.uniform(30, 50) * kKmh / 0.75, rng.uniform(1.0, 2.0));
+    b.cruise(rng.uniform(10, 25));
+    b.change_to(0, rng.uniform(1.5, 3.0));
+    b.stand(rng.uniform(4, 12));
+  }
+}
+
+// A tractor drives solo, couples a semi-trailer at a stop (100-200 % of its own mass, on the
+// fifth wheel), drives loaded, and uncouples it at a second stop.
+void truck_coupling_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun&,
+                        Built& o) {
+  const Seats seats = seats_of(d);
+  o.payload = {{g.uniform(70, 95), seats.front_x, 0.37, seats.seat_z}};
+  b.stand(3);
+  stop_and_go(b, g, 3);
+  const double trailer_kg =
+      std::min(g.uniform(1.0, 2.0) * d.vehicle.empty.mass_kg, d.payload_capacity_kg - 100.0);
+  const LoadItem fifth_wheel = {trailer_kg, 0.5 * (seats.cargo_x0 + seats.cargo_x1), 0.0,
+                                seats.cargo_z};
+  LoadChange couple;
+  couple.start_s = b.time() + 10.0;
+  couple.duration_s = 20.0;
+  couple.items = {fifth_wheel};
+  b.stand(60);
+  o.changes.push_back(couple);
+  b.change_to(200 * kKmh, 6.0);
+  b.cruise(120);
+  b.change_to(0, 1.0);
+  LoadChange uncouple = couple;
+  uncouple.start_s = b.time() + 10.0;
+  uncouple.items[0].mass_kg = -trailer_kg;
+  b.stand(60);
+  o.changes.push_back(uncouple);
+  stop_and_go(b, g, 3);
+  o.duration_s = b.time() + 5.0;
+}
+
 const std::vector<ScenarioEntry>& registry() {
   static const std::vector<ScenarioEntry> entries = {
       {"paper_exp1_eps1",
@@ -463,6 +572,16 @@ const std::vector<ScenarioEntry>& registry() {
        "a message missing 3 s, a frozen sensor 10 s, absurd values, bursts of unknown and "
        "malformed frames",
        sensor_faults_run},
+      {"truck_launch_flat", "truck: accelerator floored from rest (torque at its limit), cruise",
+       truck_launch_flat_run, true},
+      {"truck_launch_grade", "truck: accelerator floored from rest up a 3 degree grade, cruise",
+       truck_launch_grade_run, true},
+      {"truck_launch_rolling", "truck: accelerator floored from rest, cruise over rolling hills",
+       truck_launch_rolling_run, true},
+      {"truck_one_gear", "truck: top gear only, floored from 40-55 km/h, hills, never braking",
+       truck_one_gear_run, true},
+      {"truck_coupling", "tractor: solo, a semi-trailer (+100-200 %) coupled at a stop, uncoupled",
+       truck_coupling_run, true},
   };
   return entries;
 }
@@ -480,7 +599,17 @@ void configure_driver(const DrawnVehicle& d, const MassProperties& mass, Scenari
 
 std::vector<std::string> population_scenario_names() {
   std::vector<std::string> out;
-  for (const ScenarioEntry& e : registry()) out.emplace_back(e.name);
+  for (const ScenarioEntry& e : registry()) {
+    if (!e.truck_drive) out.emplace_back(e.name);
+  }
+  return out;
+}
+
+std::vector<std::string> truck_scenario_names() {
+  std::vector<std::string> out = population_scenario_names();
+  for (const ScenarioEntry& e : registry()) {
+    if (e.truck_drive) out.emplace_back(e.name);
+  }
   return out;
 }
 
@@ -529,6 +658,7 @@ std::string make_population_run(const DrawnVehicle& vehicle, std::string_view sc
   s.duration_s = built.duration_s;
   s.driver = builder.build(built.duration_s);
   configure_driver(vehicle, s.mass_at(0.0), s);
+  if (built.no_brakes) s.driver_params.coast_band_n = std::numeric_limits<double>::infinity();
   if (!realism.has(Effect::kWind)) s.wind = WindParams{};
   if (!realism.has(Effect::kRoadRoughness)) {
     s.road.roughness = PiecewiseLinear(0.0);

@@ -29,6 +29,9 @@ std::string_view transmission_name(Transmission t) {
 
 std::string PowertrainParams::validate(const std::string& prefix) const {
   if (gear_ratios.empty()) return prefix + "gear_ratios must not be empty";
+  if (hold_gear < 0 || hold_gear > gear_count()) {
+    return prefix + "hold_gear must be 0 (shift) or a gear 1.." + std::to_string(gear_count());
+  }
   for (std::size_t i = 0; i < gear_ratios.size(); ++i) {
     if (!(gear_ratios[i] > 0.0)) return prefix + "gear_ratios must be > 0";
     if (i > 0 && !(gear_ratios[i] < gear_ratios[i - 1])) {
@@ -100,6 +103,7 @@ void Powertrain::reset(double speed_mps, double wheel_torque_nm) {
                                         0.5 * (p_.upshift_speed_radps + p_.downshift_speed_radps)) {
     ++gear_;
   }
+  if (p_.hold_gear > 0) gear_ = p_.hold_gear;
   target_gear_ = gear_;
   shift_time_s_ = -1.0;
   time_in_gear_s_ = p_.min_time_in_gear_s;
@@ -159,6 +163,7 @@ void Powertrain::update_shift(double dt_s, double speed_mps) {
     return;
   }
   time_in_gear_s_ += dt_s;
+  if (p_.hold_gear > 0) return;
   const double w = pm_speed_radps(gear_, speed_mps);
   if (time_in_gear_s_ < p_.min_time_in_gear_s) return;
   if (w > p_.upshift_speed_radps && gear_ < p_.gear_count()) {

@@ -4,6 +4,8 @@ namespace vmass::sim {
 
 Seats seats_of(const DrawnVehicle& d) {
   const double l = d.vehicle.wheelbase_m;
+  // A tractor's payload is the semi-trailer's load on the fifth wheel, just ahead of the tandem.
+  if (d.tractor) return {0.02 * l, 0.02 * l, l, 0.80 * l, 0.95 * l, 1.8, 1.9, true};
   switch (d.vehicle_class) {
     case VehicleClass::kVan:
       return {0.10 * l, 0.10 * l, l + 0.4, 0.45 * l, l + 0.6, 0.9, 0.9, true};

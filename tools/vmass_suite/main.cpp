@@ -2,7 +2,8 @@
 // both kinds of knowledge, with vmass's estimators on their defaults and the baselines, and
 // writes one JSON line per (run, knowledge, estimator) for tools/vmass_suite/accuracy_report.py.
 //
-//   vmass-suite [--vehicles N] [--first-seed S | --held-out] [--seeds K] [--scenarios A,B]
+//   vmass-suite [--population cars|trucks] [--vehicles N] [--first-seed S | --held-out]
+//               [--seeds K] [--scenarios A,B]
 //               [--estimators rls,bayes,...] [--knowledge known_scale,datasheet_scale]
 //               [--realism all|none|...] [--estimator-yaml FILE] [--jobs J] --out FILE.jsonl
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
@@ -43,6 +44,7 @@
 #include "suite_run.hpp"
 #include "vmass/sim/population.hpp"
 #include "vmass/sim/population_scenarios.hpp"
+#include "vmass/sim/truck_population.hpp"
 #include "vmass/sim/vehicle_class.hpp"
 
 namespace fs = std::filesystem;
@@ -81,7 +83,7 @@ std::string nominal_vehicle() {
 
 struct Options {
   int vehicles = 30;
-  std::uint64_t first_seed = vmass::sim::kDevelopmentFirstSeed;
+  std::uint64_t first_seed = 0;  ///< 0: the population's development set
   bool held_out = false;
   int seeds = 3;
   std::string scenarios, estimators, knowledge, realism = "all", estimator_yaml_path, out;
@@ -91,7 +93,31 @@ struct Options {
   std::string known_mass_drives;  ///< --lifetime: drives whose true mass is declared
   int lives = 1;
   std::string keep_dir, vehicle_ids;
+  std::string population = "cars";  ///< or trucks (truck_population.hpp)
 };
+
+bool trucks(const Options& o) { return o.population == "trucks"; }
+
+std::vector<std::string> population_scenarios(const Options& o) {
+  return trucks(o) ? vmass::sim::truck_scenario_names() : vmass::sim::population_scenario_names();
+}
+
+// The ids of --population's development (or held-out) vehicles.
+std::vector<std::string> population_ids(const Options& o) {
+  std::vector<std::string> ids;
+  if (trucks(o)) {
+    const std::uint64_t first = o.held_out         ? vmass::sim::kTruckHeldOutFirstSeed
+                                : o.first_seed > 0 ? o.first_seed
+                                                   : vmass::sim::kTruckFirstSeed;
+    for (const auto& v : vmass::sim::draw_truck_population(o.vehicles, first)) ids.push_back(v.id);
+    return ids;
+  }
+  const std::uint64_t first = o.held_out         ? vmass::sim::kHeldOutFirstSeed
+                              : o.first_seed > 0 ? o.first_seed
+                                                 : vmass::sim::kDevelopmentFirstSeed;
+  for (const auto& v : vmass::sim::draw_population(o.vehicles, first)) ids.push_back(v.id);
+  return ids;
+}
 
 bool parse_knowledge(const std::string& text, std::vector<vmass::sim::Knowledge>* out) {
   out->clear();
@@ -160,7 +186,7 @@ std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
   }
   base.series_dir = o.series_dir;
   std::vector<std::string> scenarios =
-      o.scenarios.empty() ? vmass::sim::population_scenario_names() : split(o.scenarios);
+      o.scenarios.empty() ? population_scenarios(o) : split(o.scenarios);
   for (const std::string& s : scenarios) {
     if (vmass::sim::population_scenario_description(s).empty()) {
       return "--scenarios: unknown scenario '" + s + "'";
@@ -180,8 +206,7 @@ std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
     const auto r = Realism::parse(o.realism);
     if (!r) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
     realisms.emplace_back(o.realism, *r);
-    const std::uint64_t first = o.held_out ? vmass::sim::kHeldOutFirstSeed : o.first_seed;
-    for (const auto& v : vmass::sim::draw_population(o.vehicles, first)) vehicles.push_back(v.id);
+    vehicles = population_ids(o);
   }
   for (const std::string& v : vehicles) {
     vmass::sim::DrawnVehicle probe;
@@ -242,8 +267,7 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
   }
   std::vector<std::string> ids = split(o.vehicle_ids);
   if (ids.empty()) {
-    const std::uint64_t first = o.held_out ? vmass::sim::kHeldOutFirstSeed : o.first_seed;
-    for (const auto& v : vmass::sim::draw_population(o.vehicles, first)) ids.push_back(v.id);
+    ids = population_ids(o);
   }
   for (const std::string& id : ids) {
     vmass::sim::DrawnVehicle probe;
@@ -337,6 +361,9 @@ int main(int argc, char** argv) {
   app.add_option("--vehicles", o.vehicles, "population vehicles (classes in turn)")
       ->check(CLI::Range(1, 10000));
   app.add_option("--first-seed", o.first_seed, "seed of the first vehicle");
+  app.add_option("--population", o.population,
+                 "cars (default: the classes in turn) or trucks (tractors, their own drives)")
+      ->check(CLI::IsMember({"cars", "trucks"}));
   app.add_flag("--held-out", o.held_out, "the held-out vehicles (never tune on them)");
   app.add_option("--seeds", o.seeds, "seeds per (vehicle, scenario)")->check(CLI::Range(1, 100));
   app.add_option("--scenarios", o.scenarios, "comma-separated (default: all)");
@@ -368,7 +395,7 @@ int main(int argc, char** argv) {
   app.add_flag("--population-hash", hash, "print the population definition's hash and exit");
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
   if (list) {
-    for (const auto& n : vmass::sim::population_scenario_names()) {
+    for (const auto& n : population_scenarios(o)) {
       std::cout << n << "  " << vmass::sim::population_scenario_description(n) << "\n";
     }
     return 0;

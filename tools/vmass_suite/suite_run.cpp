@@ -102,6 +102,15 @@ std::string series_path(const RunSpec& spec, const std::string& estimator, sim::
          ".csv";
 }
 
+// Seconds of |dv/dt| > 0.3 m/s^2 above 2 m/s in the truth (the "excited" drive time).
+double excited_seconds(const sim::SimulationResult& result) {
+  int ticks = 0;
+  for (const sim::TruthRow& t : result.truth) {
+    if (t.speed_mps > 2.0 && std::abs(t.long_accel_mps2) > 0.3) ++ticks;
+  }
+  return ticks / result.tick_rate_hz;
+}
+
 }  // namespace
 
 Truth truth_track(const sim::SimulationResult& r, TimeUs time_offset_us) {
@@ -177,6 +186,7 @@ RunResult run_suite_case(const RunSpec& spec, const std::string& work_dir) {
   }
   out.duration_s = run.physics.duration_s;
   out.initial_true_mass_kg = result.truth.front().mass_kg;
+  out.excited_s = excited_seconds(result);
   const Truth truth = truth_track(result, 0);
   for (sim::Knowledge k : spec.knowledge) {
     DecodeOptions decode_options;
@@ -214,6 +224,7 @@ std::string to_json_lines(const RunResult& run) {
   base["realism"] = run.spec.realism_label;
   base["duration_s"] = run.duration_s;
   base["initial_true_mass_kg"] = run.initial_true_mass_kg;
+  base["excited_s"] = run.excited_s;
   if (!run.error.empty()) {
     nlohmann::json j = base;
     j["error"] = run.error;

@@ -65,6 +65,9 @@ struct RunResult {
   std::string error;  ///< the run itself failed (a bug): every result is missing
   double duration_s = 0.0;
   double initial_true_mass_kg = 0.0;
+  /// Seconds of the drive with |dv/dt| > 0.3 m/s^2 above 2 m/s (the truth): a drive with 5 s
+  /// of it must give every estimator pairs (issue 29).
+  double excited_s = 0.0;
   std::vector<EstimatorResult> results;
 };
 

@@ -97,6 +97,7 @@ struct DrawnVehicle {
   double payload_capacity_kg = 0.0;
   double max_mass_kg = 0.0;  ///< maximum permissible mass (datasheet)
   bool electric = false;
+  bool tractor = false;  ///< pulls a semi-trailer: its payload sits on the fifth wheel
   VehicleSensors sensors;
   CanConventions can;
   KnowledgeErrors errors;

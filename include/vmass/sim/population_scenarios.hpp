@@ -43,7 +43,16 @@ struct PopulationRun {
   BusOptions bus;                ///< realism and seed set; eps, torque bias and faults per scenario
 };
 
+/// The car population's scenarios (the accuracy suite's default).
 std::vector<std::string> population_scenario_names();
+/// The truck population's: the car scenarios and the truck drives
+///   truck_launch_flat/_grade/_rolling  accelerator floored from rest (torque at its limit for
+///                                      30-60 s), then a long cruise: flat, 3 degrees, hills
+///   truck_one_gear                     top gear only: floored from 40-55 km/h (torque at its
+///                                      limit), a cruise over rolling hills, never braking
+///   truck_coupling                     a tractor solo, a semi-trailer coupled at a stop
+///                                      (+100-200 %), driven, uncoupled at a second stop
+std::vector<std::string> truck_scenario_names();
 /// One line: what the scenario stresses. Empty for an unknown name.
 std::string population_scenario_description(std::string_view name);
 

@@ -65,6 +65,8 @@ struct PowertrainParams {
   /// Torque scale while an automatic or dual-clutch shift hands over (no open clutch): the
   /// shift's s(t) falls to this instead of 0.
   double shift_min_scale = 0.0;
+  /// > 0: the gearbox stays in this gear whatever the speed (a truck driven in one gear).
+  int hold_gear = 0;
 
   double idle_speed_radps = 83.78;  ///< 800 rpm
   // engine_drag
