@@ -8,6 +8,7 @@
 #   scripts/accuracy-suite.sh                     (from anywhere)
 #   VEHICLES=7 SEEDS=1 scripts/accuracy-suite.sh  (a quick look; the report says what it ran)
 #   DRIVES=10 LIVES=1: the lifetime mode's drives per life and lives per vehicle
+#   TRUCKS=20 TRUCKS_HELD_OUT=10: the truck population's tractors (docs/accuracy-trucks.md)
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
@@ -38,6 +39,11 @@ start=$(date +%s)
   --jobs "$jobs" --out "$out/lifetime.jsonl"
 "$bin/vmass-suite" --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" --known-mass-drives 1 --held-out \
   --vehicles "$held_out" --jobs "$jobs" --out "$out/lifetime_held_out.jsonl"
+# The truck population (tractors, their own drives and held-out tractors): docs/accuracy-trucks.md.
+"$bin/vmass-suite" --population trucks --vehicles "${TRUCKS:-20}" --seeds "$seeds" \
+  --estimators rls,bayes --jobs "$jobs" --out "$out/trucks.jsonl"
+"$bin/vmass-suite" --population trucks --held-out --vehicles "${TRUCKS_HELD_OUT:-10}" --seeds "$seeds" \
+  --estimators rls,bayes --jobs "$jobs" --out "$out/trucks_held_out.jsonl"
 "$bin/vmass-suite" --runs nominal:paper_exp2_eps3:1,nominal:paper_exp1_eps1:1,suv-18:urban:1,suv-4:heavy_rear_load:1 \
   --knowledge known_scale --series-dir "$out/series" --jobs "$jobs" --out "$out/series.jsonl"
 
@@ -50,4 +56,8 @@ rm -rf docs/accuracy
   --commit "$commit" \
   --population-hash "$("$bin/vmass-suite" --population-hash)" \
   --seconds "$(( $(date +%s) - start ))"
+/usr/bin/python3 "$bin/vmass-accuracy-report" --trucks "$out/trucks.jsonl" \
+  --trucks-held-out "$out/trucks_held_out.jsonl" --out docs/accuracy-trucks.md \
+  --command "TRUCKS=${TRUCKS:-20} TRUCKS_HELD_OUT=${TRUCKS_HELD_OUT:-10} SEEDS=$seeds scripts/accuracy-suite.sh" \
+  --commit "$commit"
 echo "accuracy-suite: wrote docs/accuracy.md ($(( $(date +%s) - start )) s)"

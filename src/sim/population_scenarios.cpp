@@ -466,40 +466,51 @@ void truck_launch_flat_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilde
   o.duration_s = 240.0;
 }
 
-void truck_launch_grade_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
-                            PopulationRun& r, Built& o) {
-  typical(d, g, o);
-  truck_launch(b, g);
-  o.duration_s = 240.0;
-  r.physics.road.grade_rad = PiecewiseLinear(3.0 * kDeg);
+// The gear the gearbox would pick at that speed: the engine nearest the middle of its band.
+int gear_for_speed(const PowertrainParams& p, double speed_mps, double radius_m) {
+  const double middle = 0.5 * (p.upshift_speed_radps + p.downshift_speed_radps);
+  int gear = 1;
+  while (gear < p.gear_count() && speed_mps / radius_m *
+                                          p.gear_ratios[static_cast<std::size_t>(gear - 1)] *
+                                          p.final_drive_ratio >
+                                      middle) {
+    ++gear;
+  }
+  return gear;
 }
 
-void truck_launch_rolling_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
-                              PopulationRun& r, Built& o) {
-  typical(d, g, o);
-  truck_launch(b, g);
-  o.duration_s = 240.0;
-  r.physics.road.grade_rad = rolling_grade(g, 8000.0);
-}
-
-// One gear throughout and never a brake: rolling at 40-55 km/h in top gear, the accelerator
-// floored to cruising speed (the torque at its limit), then a cruise over rolling hills where
-// the speed drifts on the downhills and sags on the climbs.
-void truck_one_gear_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b, PopulationRun& r,
-                        Built& o) {
-  typical(d, g, o);
+// One gear throughout and never a brake, as a partner's tractor recordings: rolling at 40-55
+// km/h in the gear that suits it, the accelerator floored (the torque at its limit for 30-60 s),
+// then a long cruise that the speed controller holds with small corrections.
+void truck_one_gear(PopulationRun& r, RandomStream& g, ProfileBuilder& b, Built& o) {
   b.start_at(g.uniform(40, 55) * kKmh / 0.75);
   r.physics.initial_speed_mps = b.speed();
   PowertrainParams& gearbox = r.physics.vehicle.powertrain;
-  gearbox.hold_gear = gearbox.gear_count();
+  gearbox.hold_gear = gear_for_speed(gearbox, b.speed(), r.physics.vehicle.wheel_radius_m);
   b.change_to(200 * kKmh, 6.0);
-  while (b.time() < 240) {
-    b.cruise(g.uniform(20, 40));
-    b.change_to(g.uniform(70, 80) * kKmh / 0.75, 0.3);
-  }
+  b.cruise(300);
   o.duration_s = 240.0;
-  r.physics.road.grade_rad = rolling_grade(g, 7000.0);
   o.no_brakes = true;
+}
+
+void truck_one_gear_flat_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
+                             PopulationRun& r, Built& o) {
+  typical(d, g, o);
+  truck_one_gear(r, g, b, o);
+}
+
+void truck_one_gear_grade_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
+                              PopulationRun& r, Built& o) {
+  typical(d, g, o);
+  truck_one_gear(r, g, b, o);
+  r.physics.road.grade_rad = PiecewiseLinear(3.0 * kDeg);
+}
+
+void truck_one_gear_rolling_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
+                                PopulationRun& r, Built& o) {
+  typical(d, g, o);
+  truck_one_gear(r, g, b, o);
+  r.physics.road.grade_rad = rolling_grade(g, 7000.0);
 }
 
 // Pulling away to a town speed, holding it, stopping: `cycles` times.
@@ -574,12 +585,12 @@ const std::vector<ScenarioEntry>& registry() {
        sensor_faults_run},
       {"truck_launch_flat", "truck: accelerator floored from rest (torque at its limit), cruise",
        truck_launch_flat_run, true},
-      {"truck_launch_grade", "truck: accelerator floored from rest up a 3 degree grade, cruise",
-       truck_launch_grade_run, true},
-      {"truck_launch_rolling", "truck: accelerator floored from rest, cruise over rolling hills",
-       truck_launch_rolling_run, true},
-      {"truck_one_gear", "truck: top gear only, floored from 40-55 km/h, hills, never braking",
-       truck_one_gear_run, true},
+      {"truck_one_gear_flat", "truck: one gear, never braking, floored from 40-55 km/h, cruise",
+       truck_one_gear_flat_run, true},
+      {"truck_one_gear_grade", "truck: one gear, never braking, floored up a 3 degree grade",
+       truck_one_gear_grade_run, true},
+      {"truck_one_gear_rolling", "truck: one gear, never braking, floored, rolling hills",
+       truck_one_gear_rolling_run, true},
       {"truck_coupling", "tractor: solo, a semi-trailer (+100-200 %) coupled at a stop, uncoupled",
        truck_coupling_run, true},
   };

@@ -52,7 +52,7 @@ std::string joined_names() {
 
 std::string joined_population_names() {
   std::string s;
-  for (const std::string& n : vmass::sim::population_scenario_names()) {
+  for (const std::string& n : vmass::sim::truck_scenario_names()) {
     s += (s.empty() ? "" : ", ") + n;
   }
   return s;
@@ -140,8 +140,9 @@ int list_scenarios() {
     const auto s = vmass::sim::find_scenario(n);
     std::cout << n << "  " << s->description << '\n';
   }
-  std::cout << "\npopulation scenarios (with --vehicle CLASS-SEED):\n";
-  for (const std::string& n : vmass::sim::population_scenario_names()) {
+  std::cout << "\npopulation scenarios (with --vehicle CLASS-SEED; the truck_ drives are the "
+               "truck population's, with --vehicle tractor-SEED):\n";
+  for (const std::string& n : vmass::sim::truck_scenario_names()) {
     std::cout << n << "  " << vmass::sim::population_scenario_description(n) << '\n';
   }
   return 0;

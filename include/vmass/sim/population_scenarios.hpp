@@ -46,10 +46,10 @@ struct PopulationRun {
 /// The car population's scenarios (the accuracy suite's default).
 std::vector<std::string> population_scenario_names();
 /// The truck population's: the car scenarios and the truck drives
-///   truck_launch_flat/_grade/_rolling  accelerator floored from rest (torque at its limit for
-///                                      30-60 s), then a long cruise: flat, 3 degrees, hills
-///   truck_one_gear                     top gear only: floored from 40-55 km/h (torque at its
-///                                      limit), a cruise over rolling hills, never braking
+///   truck_launch_flat                  accelerator floored from rest, shifting up (the torque
+///                                      at its limit for 30-60 s), then a long cruise
+///   truck_one_gear_flat/_grade/_rolling  one gear, never braking: floored from 40-55 km/h,
+///                                      then a cruise; flat, 3 degrees, rolling hills
 ///   truck_coupling                     a tractor solo, a semi-trailer coupled at a stop
 ///                                      (+100-200 %), driven, uncoupled at a second stop
 std::vector<std::string> truck_scenario_names();
