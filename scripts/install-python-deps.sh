@@ -3,7 +3,8 @@
 # (build/pyenv) and installs their packages into it: cantools (the independent DBC decoder the
 # CAN layer is checked against), python-can and asammdf (vmass-log-convert reads BLF and MDF4
 # with them; the tests write ASC, TRC, BLF and MDF4 with them), lcm (the Python LCM bindings
-# the Python subscriber test uses; Debian 12 has no python3-lcm). Idempotent: an existing venv is reused, and pip is not run when every package is
+# the Python subscriber test uses; Debian 12 has no python3-lcm), and what the Python package
+# vmass needs to build and run (tests/python). Idempotent: an existing venv is reused, and pip is not run when every package is
 # already importable. Needs /usr/bin/python3 with the venv module (Debian: python3-venv).
 #
 #   scripts/install-python-deps.sh [VENV_DIR]     (default: <repo>/build/pyenv)
@@ -14,6 +15,10 @@ venv=${1:-$repo/build/pyenv}
 python=/usr/bin/python3
 packages=(cantools python-can asammdf lcm)
 modules=(cantools can asammdf lcm)
+# The Python package vmass (pyproject.toml): its build (scikit-build-core, nanobind, build) and
+# what it runs with (pandas, pyarrow, Dask), for tests/python.
+packages+=(scikit-build-core nanobind build pandas pyarrow "dask[distributed]")
+modules+=(scikit_build_core nanobind build pandas pyarrow dask distributed)
 
 if [ ! -x "$venv/bin/python" ]; then
   echo "install-python-deps: creating $venv"

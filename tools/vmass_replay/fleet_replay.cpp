@@ -8,8 +8,8 @@
 #include <set>
 #include <thread>
 
-#include "replay_run.hpp"
 #include "vmass/io/regular_file.hpp"
+#include "vmass/replay/replay_run.hpp"
 #include "vmass/runtime/can_input_source.hpp"
 #include "vmass/runtime/log_frame_source.hpp"
 

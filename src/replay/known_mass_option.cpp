@@ -1,4 +1,4 @@
-#include "known_mass_option.hpp"
+#include "vmass/replay/known_mass_option.hpp"
 
 #include <algorithm>
 #include <charconv>

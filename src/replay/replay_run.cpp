@@ -1,11 +1,11 @@
-#include "replay_run.hpp"
+#include "vmass/replay/replay_run.hpp"
 
 namespace vmass {
 
 std::string play_recording(runtime::InputSource& source, runtime::TickStep& step,
                            const std::optional<scoring::Truth>& truth,
                            const std::vector<KnownMassEvent>& known_masses,
-                           scoring::ReplaySummary* summary, EstimateCsvWriter* writer,
+                           scoring::ReplaySummary* summary, const EstimateSink& sink,
                            runtime::TickRun* run) {
   const double rate_hz = step.pipeline().params().estimator.differencing.tick_rate_hz;
   const TimeUs tick_period_us = from_seconds(1.0 / rate_hz);
@@ -27,9 +27,19 @@ std::string play_recording(runtime::InputSource& source, runtime::TickStep& step
     const runtime::TickRecord& record = step.tick(k, t, source);
     summary->add(record.estimate);
     summary->add_events(record.events);
-    if (writer) writer->write(record.estimate);
+    if (sink) sink(record.estimate);
   });
   return truth_refusal;
+}
+
+std::string play_recording(runtime::InputSource& source, runtime::TickStep& step,
+                           const std::optional<scoring::Truth>& truth,
+                           const std::vector<KnownMassEvent>& known_masses,
+                           scoring::ReplaySummary* summary, EstimateCsvWriter* writer,
+                           runtime::TickRun* run) {
+  EstimateSink sink;
+  if (writer) sink = [writer](const Estimate& e) { writer->write(e); };
+  return play_recording(source, step, truth, known_masses, summary, sink, run);
 }
 
 }  // namespace vmass
