@@ -39,6 +39,12 @@ start=$(date +%s)
   --jobs "$jobs" --out "$out/lifetime.jsonl"
 "$bin/vmass-suite" --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" --known-mass-drives 1 --held-out \
   --vehicles "$held_out" --jobs "$jobs" --out "$out/lifetime_held_out.jsonl"
+# Engine torque and engine speed, with the gear number or with the ratio derived from the engine
+# speed (issue 29): every combustion vehicle both ways, on the same drives, one seed, bayes.
+for signal in engine_gear_index engine_speed_ratio; do
+  "$bin/vmass-suite" --vehicles "$vehicles" --seeds 1 --estimators bayes --torque-signal "$signal" \
+    --jobs "$jobs" --out "$out/torque_$signal.jsonl"
+done
 # The truck population (tractors, their own drives and held-out tractors): docs/accuracy-trucks.md.
 "$bin/vmass-suite" --population trucks --vehicles "${TRUCKS:-20}" --seeds "$seeds" \
   --estimators rls,bayes --jobs "$jobs" --out "$out/trucks.jsonl"
@@ -52,6 +58,7 @@ rm -rf docs/accuracy
   --held-out "$out/held_out.jsonl" --ablation "$out/ablation.jsonl" \
   --lifetime "$out/lifetime.jsonl" --lifetime-held-out "$out/lifetime_held_out.jsonl" \
   --series-dir "$out/series" --plots-dir docs/accuracy --out docs/accuracy.md \
+  --torque-signals "$out/torque_engine_gear_index.jsonl" "$out/torque_engine_speed_ratio.jsonl" \
   --command "VEHICLES=$vehicles HELD_OUT=$held_out SEEDS=$seeds DRIVES=${DRIVES:-10} LIVES=${LIVES:-1} scripts/accuracy-suite.sh" \
   --commit "$commit" \
   --population-hash "$("$bin/vmass-suite" --population-hash)" \

@@ -21,9 +21,13 @@ std::string LearningParams::validate() const {
 double declared_scale_variance(const VehicleParams& v) {
   constexpr double kUniformStdPerBound = 0.5773502691896258;  // std = bound / sqrt(3)
   constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+  // A derived ratio's efficiency is nobody's datasheet figure: it scales the torque as its
+  // accuracy does.
+  const double efficiency =
+      v.derive_overall_ratio ? kUniformStdPerBound * v.driveline_efficiency_accuracy_fraction : 0.0;
   return std::pow(kUniformStdPerBound * v.wheel_torque_accuracy_fraction, 2) +
          std::pow(kUniformStdPerBound * v.wheel_radius_accuracy_fraction, 2) +
-         std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2);
+         std::pow(kRadPerDeg * v.pitch_gradient_std_deg_per_g, 2) + efficiency * efficiency;
 }
 
 LearntScale::LearntScale(const LearningParams& params, double prior_std)

@@ -23,6 +23,13 @@ constexpr double kMaxSpeedMps = 100.0;
 constexpr double kMaxForcePerWeight = 2.0;
 // A pitch of k deg/g tilts the accelerometer by k a / g deg: it reads a (1 + k pi / 180).
 constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+
+InputMask torque_inputs(const VehicleParams& v) {
+  if (v.derive_overall_ratio)
+    return input_bit(Input::kEngineTorque) | input_bit(Input::kEngineSpeed);
+  if (v.knows_driveline()) return input_bit(Input::kEngineTorque) | input_bit(Input::kGear);
+  return input_bit(Input::kWheelTorque);
+}
 }  // namespace
 
 std::string_view accel_source_name(AccelSource s) {
@@ -58,10 +65,7 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
                                              const DifferencingParams& differencing)
     : vehicle_(vehicle),
       params_(params),
-      required_(input_bit(Input::kAccelX) | input_bit(Input::kSpeed) |
-                (vehicle.knows_driveline()
-                     ? input_bit(Input::kEngineTorque) | input_bit(Input::kGear)
-                     : input_bit(Input::kWheelTorque))),
+      required_(input_bit(Input::kAccelX) | input_bit(Input::kSpeed) | torque_inputs(vehicle)),
       tick_rate_hz_(differencing.tick_rate_hz),
       accel_x_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       accel_y_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
@@ -84,7 +88,9 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
       scale_forget_(std::exp(-1.0 / (params.scale_memory_s * differencing.tick_rate_hz))),
       pitch_scale_(1.0 + vehicle.pitch_gradient_deg_per_g * kRadPerDeg),
       window_ticks_(differencing.steps()),
-      settle_ticks_(std::lround(params.settle_s * differencing.tick_rate_hz)) {}
+      settle_ticks_(std::lround(params.settle_s * differencing.tick_rate_hz)),
+      derive_ratio_(vehicle.derive_overall_ratio),
+      ratio_tracker_(vehicle, RatioTrackerParams{}, differencing.tick_rate_hz) {}
 
 void LongitudinalExtractor::reset() {
   restart_stretch();
@@ -99,6 +105,7 @@ void LongitudinalExtractor::restart_stretch() {
   force_filter_.reset();
   speed_filter_.reset();
   brake_filter_.reset();
+  ratio_tracker_.restart();
   has_previous_speed_ = false;
   clean_ticks_ = 0;
 }
@@ -119,6 +126,9 @@ bool LongitudinalExtractor::braking(const Sample& s) {
 
 double LongitudinalExtractor::wheel_torque_nm(const Sample& s) const {
   if (s.has(Input::kWheelTorque)) return s.wheel_torque_nm;
+  if (derive_ratio_ && s.has(Input::kEngineTorque)) {
+    return ratio_tracker_.wheel_torque_nm(s.engine_torque_nm);
+  }
   if (s.has(Input::kEngineTorque) && s.has(Input::kGear)) {
     return vehicle_.wheel_torque_from_engine_nm(s.engine_torque_nm, s.gear);
   }
@@ -136,6 +146,17 @@ bool LongitudinalExtractor::driveline_slips(const Sample& s) const {
            vehicle_.max_driveline_slip_fraction * through_gear_radps);
 }
 
+// The derived ratio's "same gear": locked on a confirmed plateau, the previous tick's.
+bool LongitudinalExtractor::ratio_locked_on_plateau() const {
+  const RatioReading& r = ratio_tracker_.reading();
+  return r.locked && r.confirmed && r.plateau == previous_gear_;
+}
+
+int LongitudinalExtractor::gear_identity(const Sample& s) const {
+  if (derive_ratio_) return ratio_tracker_.reading().plateau;
+  return s.has(Input::kGear) ? s.gear : 0;
+}
+
 // Values no car produces (a spike, a wrong scale) are a hole in the data, as NaN is: through the
 // low-pass one such tick would spread over seconds of pairs.
 bool LongitudinalExtractor::physically_possible(double force_n, const Sample& s) const {
@@ -149,6 +170,7 @@ bool LongitudinalExtractor::physically_possible(double force_n, const Sample& s)
 // The tick's force and whether the tick is clean (see the header). False: not usable at all.
 bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   if (!s.has_all(required_)) return false;
+  if (derive_ratio_) ratio_tracker_.step(s.engine_speed_radps, s.speed_mps);
   const double r = vehicle_.wheel_radius_m;
   double force = wheel_torque_nm(s) / r;
   const double force_n_reported = force;
@@ -162,9 +184,11 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
              std::abs(s.speed_mps);
   }
   if (!physically_possible(force, s)) return false;
-  const bool gear_ok =
-      (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) && !driveline_slips(s);
-  previous_gear_ = s.has(Input::kGear) ? s.gear : 0;
+  const bool gear_ok = derive_ratio_
+                           ? ratio_locked_on_plateau()
+                           : (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) &&
+                                 !driveline_slips(s);
+  previous_gear_ = gear_identity(s);
   in->force_n = force;
   const bool overrun = force_n_reported < 0.0 && !vehicle_.electric_drive;
   in->clean = (!brakes || params_.use_braking) && (!overrun || params_.use_overrun) && gear_ok &&
@@ -184,7 +208,7 @@ LongitudinalExtractor::Record LongitudinalExtractor::filtered_record(const Sampl
                 wheel_accel,
                 accel_y_filter_.step(ay),
                 force_filter_.step(force_n),
-                s.has(Input::kGear) ? s.gear : 0};
+                gear_identity(s)};
 }
 
 void LongitudinalExtractor::update_noise(double residual_n) {
@@ -193,8 +217,9 @@ void LongitudinalExtractor::update_noise(double residual_n) {
 }
 
 double LongitudinalExtractor::rotating_n(const Record& now, const Record& then) const {
-  return vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0) *
-         (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  const double mass_kg = derive_ratio_ ? ratio_tracker_.rotating_mass_kg(now.gear)
+                                       : vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
+  return mass_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
 }
 
 void LongitudinalExtractor::fill_y_by_lag(const Record& now, const Record& then) {

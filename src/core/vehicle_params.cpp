@@ -72,6 +72,11 @@ std::string VehicleParams::validate() const {
     c.fail("driveline_efficiency", "must be in (0.5, 1]");
   }
   c.positive("max_driveline_slip_fraction", max_driveline_slip_fraction);
+  c.non_negative("engine_inertia_kgm2", engine_inertia_kgm2);
+  if (!(driveline_efficiency_accuracy_fraction >= 0.0 &&
+        driveline_efficiency_accuracy_fraction < 0.5)) {
+    c.fail("driveline_efficiency_accuracy_fraction", "must be in [0, 0.5)");
+  }
   return c.message();
 }
 

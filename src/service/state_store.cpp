@@ -168,6 +168,9 @@ std::uint64_t learnt_fingerprint(const PipelineParams& p) {
   for (double x : v.gear_ratios) put(&text, "gear", x);
   for (double x : v.rotating_mass_by_gear_kg) put(&text, "rotating", x);
   put(&text, "electric", v.electric_drive ? 1.0 : 0.0);
+  // A derived ratio's force carries the speed signal's scale, not the radius's: another car's
+  // scale. Only then, so that every other config keeps its fingerprint.
+  if (v.derive_overall_ratio) put(&text, "derived_ratio", v.engine_inertia_kgm2);
   return fnv1a(text.data(), text.size());
 }
 

@@ -7,6 +7,7 @@
 #include "vmass/can/dbc.hpp"
 #include "vmass/config/yaml_reader.hpp"
 #include "vmass/io/excerpt.hpp"
+#include "vmass/signals/torque_path_check.hpp"
 #include "vmass/signals/units.hpp"
 
 namespace vmass::signals {
@@ -328,6 +329,7 @@ CanInputsLoad load_can_inputs(const Config& config) {
       error = parse_message_protection(e2e, config.file, *result.decoder, dbc, &mapping.protection);
     }
     if (error.empty()) error = parse_plausibility(plausibility, config.file, &mapping.plausibility);
+    if (error.empty()) error = check_torque_path(config, mapping);
     if (!error.empty()) {
       out.error = error;
       return out;

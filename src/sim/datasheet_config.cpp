@@ -14,6 +14,20 @@ namespace vmass::sim {
 
 namespace {
 
+/// Engine torque and engine speed without the gear number: no ratios (nor the per-gear masses
+/// computed from them), the engine's inertia instead, the efficiency's accuracy declared as the
+/// torque's is.
+void derive_ratio(const TrueVehicle& v, double rotating_error_scale, double efficiency_accuracy,
+                  VehicleParams* p) {
+  p->gear_ratios.clear();
+  p->final_drive_ratio = 0.0;
+  p->rotating_mass_by_gear_kg.clear();
+  p->derive_overall_ratio = true;
+  p->engine_inertia_kgm2 = v.powertrain.prime_mover_inertia_kgm2 * rotating_error_scale;
+  p->driveline_efficiency_accuracy_fraction = efficiency_accuracy;
+  p->torque_converter = v.powertrain.has_torque_converter();  // the gearbox's kind is known
+}
+
 /// The `vehicle:` values its engineer knows: the datasheet's, with its errors when `errors`.
 VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k) {
   const TrueVehicle& v = d.vehicle;
@@ -46,6 +60,9 @@ VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k)
     p.gear_ratios = v.powertrain.gear_ratios;
     p.final_drive_ratio = v.powertrain.final_drive_ratio;
     p.driveline_efficiency = v.powertrain.efficiency;
+  }
+  if (d.sensors.torque == TorqueSignal::kEngineTorque && !d.sensors.gear_index) {
+    derive_ratio(v, rot, declared ? e.declared_torque_accuracy : 0.0, &p);
   }
   return p;
 }

@@ -151,7 +151,10 @@ class MessageLayout {
       pt.signals.push_back(make(Source::kWheelTorque, "WheelTorque", 0, 16, true, tq, 0.0, "Nm",
                                 1.0, "wheel_torque"));
     }
-    pt.signals.push_back(make(Source::kGear, "GearEngaged", 4, 8, true, 1.0, 0.0, "", 1.0, "gear"));
+    if (s_.gear_index) {
+      pt.signals.push_back(
+          make(Source::kGear, "GearEngaged", 4, 8, true, 1.0, 0.0, "", 1.0, "gear"));
+    }
     return pt;
   }
 

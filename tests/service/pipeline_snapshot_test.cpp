@@ -389,6 +389,11 @@ TEST_F(StateFileTest, EachSectionHasItsOwnFingerprint) {
   EXPECT_EQ(r.status, service::StateLoadStatus::kLoaded);
   EXPECT_FALSE(r.state.snapshot.learnt_saved);
   EXPECT_NE(r.learnt_dropped.find("rolling radius"), std::string::npos) << r.learnt_dropped;
+  // The ratio derived from the engine speed instead of the wheel torque: what was learnt is not
+  // this path's scale.
+  PipelineParams derived = params;
+  derived.vehicle.derive_overall_ratio = true;
+  EXPECT_NE(service::learnt_fingerprint(derived), learnt_fp);
 
   r = service::load_state_file(p, state_.fingerprint ^ 1, learnt_fp);
   EXPECT_EQ(r.status, service::StateLoadStatus::kRejected);

@@ -252,6 +252,47 @@ TEST_F(CanInputsFiles, ErrorsNameTheFileLineAndKey) {
                config + ":15: can.inputs.speed.message: no message 'Nope' in dbc/car.dbc");
 }
 
+// The longitudinal block's torque path (check_torque_path): engine torque without the ratios
+// needs the engine speed and vehicle.derive_overall_ratio.
+TEST_F(CanInputsFiles, EngineTorqueNeedsRatiosOrTheEngineSpeed) {
+  const std::string config = (dir_ / "config.yaml").string();
+  const std::string engine_torque = "    engine_torque: {message: Torques, signal: Front}\n";
+  const std::string engine_speed =
+      "    engine_speed: {message: Speeds, signal: NoUnit, gain: 0.1047}\n";
+  const std::string can = "can:\n  dbc: dbc/car.dbc\n  inputs:\n";
+  // Neither ratios nor the engine speed: located at the engine torque's key.
+  expect_error(can + engine_torque, config + ":15: can.inputs.engine_torque: no wheel_torque");
+  expect_error(can + engine_torque, "map engine_speed and set vehicle.derive_overall_ratio");
+  // The engine speed mapped, the key not set: it says which key.
+  expect_error(can + engine_torque + engine_speed,
+               "set vehicle.derive_overall_ratio: true (the ratio from engine_speed)");
+}
+
+TEST_F(CanInputsFiles, DerivedRatioConfigWithoutRatiosOrGearIsValid) {
+  const std::string config = (dir_ / "config.yaml").string();
+  std::string vehicle = kVehicle;
+  vehicle.insert(vehicle.find("suspension:"), "  derive_overall_ratio: true\n");  // line 12
+  const std::string can = "can:\n  dbc: dbc/car.dbc\n  inputs:\n";
+  const std::string engine_torque = "    engine_torque: {message: Torques, signal: Front}\n";
+  write("config.yaml", vehicle + can + engine_torque +
+                           "    engine_speed: {message: Speeds, signal: NoUnit, gain: 0.1047}\n");
+  ConfigLoad c = load_config(config);
+  ASSERT_TRUE(c.ok()) << c.error;
+  EXPECT_TRUE(c.config->pipeline.vehicle.derive_overall_ratio);
+  const CanInputsLoad r = load_can_inputs(*c.config);
+  EXPECT_TRUE(r.ok()) << r.error;
+  // The key without the engine speed mapped is the error, at the engine torque's line.
+  write("config.yaml", vehicle + can + engine_torque);
+  c = load_config(config);
+  ASSERT_TRUE(c.ok()) << c.error;
+  const CanInputsLoad missing = load_can_inputs(*c.config);
+  EXPECT_FALSE(missing.ok());
+  EXPECT_NE(missing.error.find(config + ":16: can.inputs.engine_torque: "
+                                        "vehicle.derive_overall_ratio needs engine_speed mapped"),
+            std::string::npos)
+      << missing.error;
+}
+
 }  // namespace
 }  // namespace vmass::signals
 

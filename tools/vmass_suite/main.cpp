@@ -6,6 +6,7 @@
 //               [--seeds K] [--scenarios A,B]
 //               [--estimators rls,bayes,...] [--knowledge known_scale,datasheet_scale]
 //               [--realism all|none|...] [--estimator-yaml FILE] [--jobs J] --out FILE.jsonl
+//               [--torque-signal as_drawn|engine_gear_index|engine_speed_ratio]
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
 //   vmass-suite --lifetime DRIVES [--vehicles N | --vehicle-ids ID,...] [--held-out] [--lives K]
@@ -44,6 +45,7 @@
 #include "suite_run.hpp"
 #include "vmass/sim/population.hpp"
 #include "vmass/sim/population_scenarios.hpp"
+#include "vmass/sim/torque_signal_variant.hpp"
 #include "vmass/sim/truck_population.hpp"
 #include "vmass/sim/vehicle_class.hpp"
 
@@ -93,7 +95,8 @@ struct Options {
   std::string known_mass_drives;  ///< --lifetime: drives whose true mass is declared
   int lives = 1;
   std::string keep_dir, vehicle_ids;
-  std::string population = "cars";  ///< or trucks (truck_population.hpp)
+  std::string population = "cars";         ///< or trucks (truck_population.hpp)
+  std::string torque_signal = "as_drawn";  ///< torque_signal_variant.hpp
 };
 
 bool trucks(const Options& o) { return o.population == "trucks"; }
@@ -179,6 +182,11 @@ std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
   if (!o.knowledge.empty() && !parse_knowledge(o.knowledge, &base.knowledge)) {
     return "--knowledge: expected known_scale and/or datasheet_scale";
   }
+  const auto torque_signal = vmass::sim::parse_torque_signal_variant(o.torque_signal);
+  if (!torque_signal) {
+    return "--torque-signal: expected one of " + vmass::sim::torque_signal_variant_names();
+  }
+  base.torque_signal = *torque_signal;
   if (!o.estimator_yaml_path.empty()) {
     bool ok = false;
     base.estimator_yaml = read_text(o.estimator_yaml_path, &ok);
@@ -369,6 +377,8 @@ int main(int argc, char** argv) {
   app.add_option("--scenarios", o.scenarios, "comma-separated (default: all)");
   app.add_option("--estimators", o.estimators, "comma-separated (default: rls,bayes,baselines)");
   app.add_option("--knowledge", o.knowledge, "known_scale,datasheet_scale (default both)");
+  app.add_option("--torque-signal", o.torque_signal,
+                 "combustion vehicles' torque: " + vmass::sim::torque_signal_variant_names());
   app.add_option("--realism", o.realism, "effects: all (default), none, all-EFFECT, A+B");
   app.add_option("--estimator-yaml", o.estimator_yaml_path,
                  "YAML appended to every config (an estimator: section to try)");

@@ -172,6 +172,7 @@ RunResult run_suite_case(const RunSpec& spec, const std::string& work_dir) {
   out.spec = spec;
   sim::DrawnVehicle vehicle;
   if (!sim::parse_vehicle_id(spec.vehicle_id, &vehicle, &out.error)) return out;
+  sim::apply_torque_signal_variant(spec.torque_signal, &vehicle);
   out.vehicle_class = std::string(sim::vehicle_class_name(vehicle.vehicle_class));
   sim::PopulationRun run;
   if (auto m = sim::make_population_run(vehicle, spec.scenario, spec.seed, spec.realism, &run);
@@ -225,6 +226,9 @@ std::string to_json_lines(const RunResult& run) {
   base["duration_s"] = run.duration_s;
   base["initial_true_mass_kg"] = run.initial_true_mass_kg;
   base["excited_s"] = run.excited_s;
+  if (run.spec.torque_signal != sim::TorqueSignalVariant::kAsDrawn) {
+    base["torque_signal"] = std::string(sim::torque_signal_variant_name(run.spec.torque_signal));
+  }
   if (!run.error.empty()) {
     nlohmann::json j = base;
     j["error"] = run.error;

@@ -23,6 +23,7 @@
 #include "vmass/sim/datasheet_config.hpp"
 #include "vmass/sim/realism.hpp"
 #include "vmass/sim/simulator.hpp"
+#include "vmass/sim/torque_signal_variant.hpp"
 
 namespace vmass::suite {
 
@@ -40,6 +41,8 @@ struct RunSpec {
   std::vector<std::string> estimators;  ///< rls, bayes, and baseline names
   std::string estimator_yaml;           ///< appended to every config (experiments)
   std::string series_dir;               ///< "": no per-tick series; else CSVs go there
+  /// The torque signal every vehicle has (torque_signal_variant.hpp; --torque-signal).
+  sim::TorqueSignalVariant torque_signal = sim::TorqueSignalVariant::kAsDrawn;
 };
 
 struct EstimatorResult {

@@ -14,7 +14,7 @@
 
 namespace vmass {
 
-inline constexpr std::array<Field<VehicleParams>, 25> kVehicleFields{{
+inline constexpr std::array<Field<VehicleParams>, 29> kVehicleFields{{
     {"empty_mass_kg", &VehicleParams::empty_mass_kg, true},
     {"wheelbase_m", &VehicleParams::wheelbase_m, true},
     {"cg_to_front_axle_m", &VehicleParams::cg_to_front_axle_m, true},
@@ -42,6 +42,11 @@ inline constexpr std::array<Field<VehicleParams>, 25> kVehicleFields{{
     {"final_drive_ratio", &VehicleParams::final_drive_ratio},
     {"driveline_efficiency", &VehicleParams::driveline_efficiency},
     {"max_driveline_slip_fraction", &VehicleParams::max_driveline_slip_fraction},
+    {"derive_overall_ratio", &VehicleParams::derive_overall_ratio},
+    {"torque_converter", &VehicleParams::torque_converter},
+    {"engine_inertia_kgm2", &VehicleParams::engine_inertia_kgm2},
+    {"driveline_efficiency_accuracy_fraction",
+     &VehicleParams::driveline_efficiency_accuracy_fraction},
 }};
 
 /// Reads the section; unknown keys are errors. Throws ConfigError.

@@ -45,7 +45,7 @@ struct LearningParams {
 
 /// The relative variance of kappa the config declares (its datasheet belief): the torque
 /// signal's scale and the rolling radius (uniform within their declared bounds) and the
-/// accelerometer's pitch.
+/// accelerometer's pitch; with a derived overall ratio, the driveline efficiency too.
 double declared_scale_variance(const VehicleParams& vehicle);
 
 /// The persisted belief in log kappa (plain values).

@@ -24,8 +24,9 @@
 //   - a pair is taken only when the whole window (and settle_s before it) was clean: no brake
 //     (the brake gain is the least known; use_braking allows braking pairs), no engine dragged
 //     in overrun (an ECU's drag torque is its least accurate; use_overrun allows it; an
-//     electric drive's regeneration is clean), no gear change and a valid gear, speed above
-//     min_speed_mps, |a_y| small;
+//     electric drive's regeneration is clean), no gear change and a valid gear (with
+//     vehicle.derive_overall_ratio: the ratio locked on one confirmed plateau of
+//     OverallRatioTracker), speed above min_speed_mps, |a_y| small;
 //   - an outlier gate that cannot lock in: the mass the pair implies, y / da, must lie in the
 //     plausible band [0.5 empty, 1.5 maximum permissible] (2.5 empty without a maximum).
 // Without a brake-pressure signal the brake-light switch decides; with neither, the block needs
@@ -44,6 +45,7 @@
 #include "vmass/core/extraction.hpp"
 #include "vmass/core/lag_estimator.hpp"
 #include "vmass/core/low_pass_filter.hpp"
+#include "vmass/core/overall_ratio_tracker.hpp"
 #include "vmass/core/sample.hpp"
 #include "vmass/core/vehicle_params.hpp"
 
@@ -113,8 +115,9 @@ class LongitudinalExtractor {
 
   /// Inputs this block needs: a_x, speed and the wheel torque, or, on a car whose driveline
   /// ratios are configured, the engine torque and the gear (the engine speed, when present,
-  /// detects a slipping converter or clutch). Brake pressure or the brake switch decide the
-  /// brake state when present.
+  /// detects a slipping converter or clutch), or, with vehicle.derive_overall_ratio, the engine
+  /// torque and the engine speed (the ratio derived from them, OverallRatioTracker). Brake
+  /// pressure or the brake switch decide the brake state when present.
   InputMask required_inputs() const { return required_; }
 
  private:
@@ -140,6 +143,10 @@ class LongitudinalExtractor {
   double wheel_torque_nm(const Sample& s) const;
   /// The engine turns faster or slower than the wheels through the gear (converter, clutch).
   bool driveline_slips(const Sample& s) const;
+  /// The derived ratio (derive_overall_ratio) is locked on the previous tick's confirmed plateau.
+  bool ratio_locked_on_plateau() const;
+  /// What a pair's two ends must share: the gear, or the derived ratio's plateau (0: none).
+  int gear_identity(const Sample& s) const;
   bool braking(const Sample& s);
   bool physically_possible(double force_n, const Sample& s) const;
   Record filtered_record(const Sample& s, double force_n);
@@ -193,6 +200,9 @@ class LongitudinalExtractor {
   long clean_ticks_ = 0;
   long window_ticks_;
   long settle_ticks_;
+  // vehicle.derive_overall_ratio: the ratio and its plateaus (the gear) from the engine speed.
+  bool derive_ratio_;
+  OverallRatioTracker ratio_tracker_;
 };
 
 }  // namespace vmass

@@ -62,6 +62,22 @@ struct VehicleParams {
   /// gear, a torque converter or clutch slips and the engine torque does not reach the wheels
   /// by the ratios: such ticks are not clean.
   double max_driveline_slip_fraction = 0.05;
+  /// A car with engine torque and engine speed on its bus but no gear number and no ratios in
+  /// the config: the overall ratio is derived, i = w_engine r / v, while the converter is locked
+  /// or the clutch closed (OverallRatioTracker). The block then needs engine_torque and
+  /// engine_speed, not the gear; gear_ratios and final_drive_ratio are not used.
+  bool derive_overall_ratio = false;
+  /// With derive_overall_ratio: the gearbox has a torque converter (an automatic; false for a
+  /// manual, automated manual or double clutch). A converter at its coupling point holds the
+  /// ratio steady but off the gear's, so only ratios seen locked above any lock-up speed count.
+  bool torque_converter = true;
+  /// With derive_overall_ratio: the engine's inertia (crank, flywheel, converter), kg m^2; its
+  /// share of the rotating mass is eta J i^2 / r^2 at the derived ratio. 0: unknown (only
+  /// rotating_mass_kg, the wheels', is counted).
+  double engine_inertia_kgm2 = 0.0;
+  /// With derive_overall_ratio: the bound of driveline_efficiency's relative error. No gearbox
+  /// data declares it; until the lumped scale is learnt (LearntScale) it widens the interval.
+  double driveline_efficiency_accuracy_fraction = 0.03;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
   /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.

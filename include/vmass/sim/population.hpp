@@ -47,6 +47,9 @@ struct VehicleSensors {
   TorqueSignal torque = TorqueSignal::kWheelTorque;
   SpeedSignal speed = SpeedSignal::kEsc;
   bool lateral = true;  ///< a_y, yaw rate and steering-wheel angle
+  /// The gear number is on the bus and its ratios in the config; false: engine torque and speed
+  /// only, the config derives the ratio (torque_signal_variant.hpp).
+  bool gear_index = true;
 };
 
 /// How this vehicle's DBC writes its signals, and when its ECUs send them.
