@@ -50,6 +50,8 @@ std::string_view reason_name(StatusReason r) {
       return "mass_implausible";
     case StatusReason::kKnownMass:
       return "known_mass";
+    case StatusReason::kModelLimited:
+      return "model_limited";
   }
   return "unknown";
 }
@@ -86,6 +88,12 @@ std::string Estimate::describe_reason() const {
     text += ": " + describe_rejection() +
             "; nothing is published until an estimate is in the band (check the config's "
             "empty mass and suspension calibration)";
+  }
+  if (reason == StatusReason::kModelLimited) {
+    text +=
+        ": more driving will not narrow the interval; what the config leaves unknown about the "
+        "car (the torque scale, the rolling radius, the rotating masses) is most of its width, "
+        "and a known mass (vmass-ctl known-mass) teaches it";
   }
   if (reason == StatusReason::kKnownMass) {
     text +=

@@ -33,6 +33,7 @@ std::string EstimatorParams::validate() const {
   c.nested(rls.validate());
   c.nested(bayes.validate());
   c.in_open_range("converged_ci_halfwidth_fraction", converged_ci_halfwidth_fraction, 0.0, 1.0);
+  c.in_open_range("converged_halfwidth_fraction", converged_halfwidth_fraction, 0.0, 1.0);
   if (!(model_error_std_fraction >= 0.0 && model_error_std_fraction < 1.0)) {
     c.fail("model_error_std_fraction", "must be in [0, 1)");
   }
@@ -497,9 +498,14 @@ void Pipeline::publish_known_mass() {
   if (estimate_.invalid_inputs != 0) return;  // degraded stays degraded
   // Without a load sensor, a long stop may have changed the load unseen: converged again once
   // the load monitor's challenger has had its pairs (as for any belief).
-  estimate_.status =
-      load_monitor_.undecided() ? EstimateStatus::kConverging : EstimateStatus::kConverged;
+  estimate_.status = load_monitor_.undecided() || !published_narrow() ? EstimateStatus::kConverging
+                                                                      : EstimateStatus::kConverged;
   estimate_.reason = StatusReason::kKnownMass;
+}
+
+bool Pipeline::published_narrow() const {
+  const double half_width = 0.5 * (estimate_.ci_high_kg - estimate_.ci_low_kg);
+  return half_width <= params_.estimator.converged_halfwidth_fraction * std::abs(estimate_.mass_kg);
 }
 
 void Pipeline::refresh_estimate(const Sample& sample) {
@@ -562,15 +568,21 @@ void Pipeline::refresh_belief() {
     estimate_.status = EstimateStatus::kConverging;
     estimate_.reason = StatusReason::kLoadChangeSuspected;
   } else {
-    // Converged: more driving would not narrow it (the regression's part is small), and no
-    // stop since may have changed the load unseen (without a load sensor, the load monitor's
-    // challenger has had the pairs it needs to tell).
-    const double half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);
-    const bool narrow =
-        half_width < params_.estimator.converged_ci_halfwidth_fraction * std::abs(state.mass_kg) &&
-        !load_monitor_.undecided();
+    // Converged: more driving would not narrow it (the regression's part is small), no stop
+    // since may have changed the load unseen (without a load sensor, the load monitor's
+    // challenger has had the pairs it needs to tell), and the interval published is narrow.
+    const double regression_half_width = 0.5 * (state.ci_high_kg - state.ci_low_kg);
+    const bool settled = regression_half_width < params_.estimator.converged_ci_halfwidth_fraction *
+                                                     std::abs(state.mass_kg) &&
+                         !load_monitor_.undecided();
+    const bool narrow = settled && published_narrow();
     estimate_.status = narrow ? EstimateStatus::kConverged : EstimateStatus::kConverging;
-    estimate_.reason = narrow ? StatusReason::kIntervalNarrow : StatusReason::kRefining;
+    if (narrow) {
+      estimate_.reason = StatusReason::kIntervalNarrow;
+    } else {
+      // Settled inside a wide interval: only what the config leaves unknown keeps it wide.
+      estimate_.reason = settled ? StatusReason::kModelLimited : StatusReason::kRefining;
+    }
   }
   // A known mass holds for its load: while the drive since a stop says the load changed, the
   // published estimate is the suspicion's (the challenger's, spanning both), not the declaration.

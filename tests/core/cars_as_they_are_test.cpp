@@ -302,10 +302,31 @@ TEST(Interval, HoldsTheDeclaredModelErrorThatNoDrivingAveragesAway) {
   EXPECT_GE(e.mass_std_kg, e.mass_model_std_kg);
   // The 95 % half-width is at least 1.96 model stds, so it never shrinks below ~6 % here ...
   EXPECT_GT(0.5 * (e.ci_high_kg - e.ci_low_kg), 1.9 * e.mass_model_std_kg);
-  // ... while the regression itself has converged: more driving would not narrow it.
-  EXPECT_EQ(e.status, EstimateStatus::kConverged);
+  // ... while the regression itself has converged: more driving would not narrow it, and the
+  // status says so rather than `converged` (issue 30: not at +-6 %).
+  EXPECT_EQ(e.status, EstimateStatus::kConverging);
+  EXPECT_EQ(e.reason, StatusReason::kModelLimited);
   EXPECT_LE(e.ci_low_kg, drive.mass_kg);
   EXPECT_GE(e.ci_high_kg, drive.mass_kg);
+}
+
+TEST(Interval, ConvergedMeansThePublishedIntervalIsNarrow) {
+  // The same drive with the torque, radius and pitch known: the published half-width is the
+  // 1 % model floor's (about 2 %), within the 5 % that `converged` allows.
+  PipelineParams p = with_declared_accuracies(0.0, 0.0, 0.0);
+  testing::LongitudinalDrive drive;
+  drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  Estimate e = after_static_start_and_drive(p, drive);
+  const double half_width = 0.5 * (e.ci_high_kg - e.ci_low_kg);
+  EXPECT_LT(half_width, p.estimator.converged_halfwidth_fraction * e.mass_kg);
+  EXPECT_EQ(e.status, EstimateStatus::kConverged);
+  EXPECT_EQ(e.reason, StatusReason::kIntervalNarrow);
+  // A stricter threshold than that half-width: the same belief is model-limited.
+  p.estimator.converged_halfwidth_fraction = 0.5 * half_width / e.mass_kg;
+  e = after_static_start_and_drive(p, drive);
+  EXPECT_EQ(e.status, EstimateStatus::kConverging);
+  EXPECT_EQ(e.reason, StatusReason::kModelLimited);
+  EXPECT_NE(e.describe_reason().find("known mass"), std::string::npos);
 }
 
 /// A truck's low gears: the engine's inertia through the gearbox is a large part of what the

@@ -5,7 +5,13 @@
 //   initialising  no belief yet (no standstill window, not driving)
 //   static_only   the static initialisation (eq. 3) only; no dynamic event used yet
 //   converging    dynamic events are refining the estimate
-//   converged     the 95% interval half-width is below converged_ci_halfwidth_fraction * mass
+//   converged     the published 95% interval's half-width is at most
+//                 converged_halfwidth_fraction (5 %) of the mass, the regression's own part
+//                 below converged_ci_halfwidth_fraction (1 %) (more driving would not narrow
+//                 it), and no load change is undecided; `converging (model_limited)` when only
+//                 the published width is missing: what the config leaves unknown about the car
+//                 (the lumped scale, the rotating masses) is wider than that, and only a known
+//                 mass, not more driving, narrows it
 //   degraded      inputs an enabled block needs are stale or invalid at this tick; the last
 //                 estimate is held
 #pragma once
@@ -53,6 +59,8 @@ enum class StatusReason : std::uint8_t {
                               ///< band (plausible_band.hpp); no mass is published, and
                               ///< implausible_mass_kg says what the estimator holds
   kKnownMass,                 ///< converged: the user declared the load's mass (KnownMass)
+  kModelLimited,              ///< converging: the regression has converged, but the published
+                              ///< interval (its model error) is wider than converged allows
 };
 
 std::string_view status_name(EstimateStatus s);

@@ -68,7 +68,14 @@ struct EstimatorParams {
   RlsParams rls;
   BayesParams bayes;
   LearningParams learning;
+  /// The regression has converged (more driving would not narrow it) when its own 95 %
+  /// half-width is below this fraction of the mass.
   double converged_ci_halfwidth_fraction = 0.01;
+  /// `converged` also needs the published 95 % half-width (the regression's and the model
+  /// error's: what the config leaves unknown about the car) below this fraction of the mass;
+  /// above it the status is `converging (model_limited)`. 5 %: the paper's "within 1 to 5 %
+  /// of the real mass", the widest interval a mass estimate is asked to be useful at.
+  double converged_halfwidth_fraction = 0.05;
   /// Ticks over which consecutive pairs share their noise; each pair counts as 1/this of an
   /// independent observation (RegressionPair::information). 0 = automatic: the low-pass's
   /// time constant, tick_rate / (2 pi cutoff), or 1 without the filter. Measured on the
@@ -196,6 +203,8 @@ class Pipeline {
   void begin_known_mass();
   /// The known mass as the published estimate.
   void publish_known_mass();
+  /// The published 95 % interval is within converged_halfwidth_fraction of the mass.
+  bool published_narrow() const;
   /// A completed standstill window's mass (a first window or a load change).
   void on_static_mass(const StaticMass& static_mass, StepResult* result);
   /// The first step after restore(): after a power cycle the mass starts afresh.
