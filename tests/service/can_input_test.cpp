@@ -29,6 +29,20 @@
 #include "vmass/runtime/socketcan_frame_source.hpp"
 #include "vmass/signals/signal_mapping.hpp"
 
+// The sanitizers slow the receive thread by themselves (GCC says so with __SANITIZE_*__,
+// clang with __has_feature).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define VMASS_CAN_INPUT_TEST_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || \
+    defined(VMASS_CAN_INPUT_TEST_SANITIZED)
+constexpr bool kUnderSanitizer = true;
+#else
+constexpr bool kUnderSanitizer = false;
+#endif
+
 namespace vmass::service {
 namespace {
 
@@ -316,9 +330,12 @@ void expect_vmassd_reads_records_from_fd3(const std::string& daemon_yaml, const 
   EXPECT_EQ(last.frames_unknown, 10);
   EXPECT_GT(estimates, 50);  // 100 Hz for about 1.3 s
   // Records are late only when the receive thread is held off for 4.5 ms (a loaded machine, a
-  // sanitizer build): 0-1 on a loaded machine, 6 once under TSan; a drain that came after the
-  // ticks made 16 of these 110 late.
-  EXPECT_LE(records_late(err_text), 10) << err_text;
+  // sanitizer build): 0-1 on a loaded machine, 6 once under TSan, 14 under TSan on a machine
+  // with both cores busy; a drain that came after the ticks made 16 of these 110 late. Under a
+  // sanitizer the instrumentation alone comes that close, so the plain build's run checks it.
+  if (!kUnderSanitizer) {
+    EXPECT_LE(records_late(err_text), 10) << err_text;
+  }
   EXPECT_NE(err_text.find("input socketcan:fd3"), std::string::npos) << err_text;
 
   const int bad = std::system((std::string(VMASSD_BIN) + " --config " + config +
