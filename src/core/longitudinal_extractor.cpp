@@ -216,10 +216,13 @@ void LongitudinalExtractor::update_noise(double residual_n) {
   residual_scale_n_ = noise_forget_ * residual_scale_n_ + (1.0 - noise_forget_) * clipped;
 }
 
+double LongitudinalExtractor::rotating_mass_kg(const Record& now) const {
+  return derive_ratio_ ? ratio_tracker_.rotating_mass_kg(now.gear)
+                       : vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
+}
+
 double LongitudinalExtractor::rotating_n(const Record& now, const Record& then) const {
-  const double mass_kg = derive_ratio_ ? ratio_tracker_.rotating_mass_kg(now.gear)
-                                       : vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
-  return mass_kg * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  return rotating_mass_kg(now) * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
 }
 
 void LongitudinalExtractor::fill_y_by_lag(const Record& now, const Record& then) {
@@ -307,6 +310,8 @@ LongitudinalExtractor::PairTerms LongitudinalExtractor::pair_terms(const Record&
   t.noise_n = force_noise_n();
   t.rotating_n = rotating_n(now, then);
   t.pair_noise_n = std::hypot(t.noise_n, vehicle_.rotating_mass_accuracy_fraction * t.rotating_n);
+  t.gear = now.gear;
+  t.rotating_mass_kg = rotating_mass_kg(now);
   return t;
 }
 
@@ -334,6 +339,8 @@ Extraction LongitudinalExtractor::finish(const PairTerms& terms, double y, Extra
   out.pair.weight = params_.weight;
   out.pair.noise_std_n = terms.pair_noise_n;
   out.pair.rotating_n = terms.rotating_n;
+  out.pair.gear = terms.gear;
+  out.pair.rotating_mass_kg = terms.rotating_mass_kg;
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "vmass/service/lcm_publisher.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "vmass/version.hpp"
@@ -96,6 +97,10 @@ void to_lcm(const PairEvent& event, Block block, TimeUs tick_us, vmass::pair_t* 
   out->predicted_y_n = finite_or_zero(event.predicted_y_n);
   out->innovation_variance_n2 = finite_or_zero(event.innovation_variance_n2);
   out->test_ratio = finite_or_zero(event.test_ratio);
+  out->rotating_n = finite_or_zero(event.pair.rotating_n);
+  out->rotating_mass_kg = finite_or_zero(event.pair.rotating_mass_kg);
+  out->gear = static_cast<std::int8_t>(std::clamp(event.pair.gear, -128, 127));
+  out->noise_std_n = finite_or_zero(event.pair.noise_std_n);
 }
 
 // The per-input counters of schema 2 (zero until their source fills DaemonStatus).

@@ -55,6 +55,10 @@ TickRecord make_record(std::int64_t tick) {
   r.events[0].predicted_y_n = 845.0;
   r.events[0].innovation_variance_n2 = 1.0e4;
   r.events[0].test_ratio = 0.05;
+  r.events[0].pair.rotating_n = 21.0;
+  r.events[0].pair.rotating_mass_kg = 42.0;
+  r.events[0].pair.gear = 3;
+  r.events[0].pair.noise_std_n = 60.0;
   r.events[1].verdict = PairVerdict::kSteering;
   r.events[1].predicted_y_n = std::numeric_limits<double>::quiet_NaN();  // never on the wire
   r.inputs_valid = kAllInputs & ~input_bit(Input::kGear);
@@ -157,6 +161,10 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(rx.pairs[0].y_n, 850.0);
   EXPECT_EQ(rx.pairs[0].delta_accel_mps2, 0.5);
   EXPECT_EQ(rx.pairs[0].test_ratio, 0.05);
+  EXPECT_EQ(rx.pairs[0].rotating_n, 21.0);  // schema 4
+  EXPECT_EQ(rx.pairs[0].rotating_mass_kg, 42.0);
+  EXPECT_EQ(rx.pairs[0].gear, 3);
+  EXPECT_EQ(rx.pairs[0].noise_std_n, 60.0);
   EXPECT_EQ(rx.pairs[1].block_name, "lateral");
   EXPECT_FALSE(rx.pairs[1].accepted);
   EXPECT_EQ(rx.pairs[1].verdict_name, std::string(verdict_name(PairVerdict::kSteering)));
@@ -187,7 +195,7 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.tick_overruns, 2);
   EXPECT_EQ(s.jitter_p99_us, 240.0);
   EXPECT_TRUE(s.state_restored);
-  EXPECT_EQ(s.schema_version, 3);
+  EXPECT_EQ(s.schema_version, 4);
   ASSERT_EQ(s.num_verdicts, static_cast<int>(PairVerdict::kCount));
   EXPECT_EQ(s.verdict_name[0], "accepted");
   const auto steering = static_cast<std::size_t>(PairVerdict::kSteering);

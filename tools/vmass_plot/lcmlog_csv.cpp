@@ -2,16 +2,20 @@
 // file://RUN.lcmlog?mode=w), as CSV files vmass-plot plots. Read with LCM's own log reader
 // (lcm::LogFile); the messages decoded with the generated vmass types.
 //
-//   vmass-lcmlog-csv LOG [--estimates CSV] [--status CSV] [--estimate-channel C]
-//                    [--status-channel C]
+//   vmass-lcmlog-csv LOG [--estimates CSV] [--status CSV] [--pairs CSV] [--estimate-channel C]
+//                    [--status-channel C] [--pairs-channel C]
 //
 // The estimates CSV has vmass-replay's columns and number formats (docs/formats.md), so a
 // recording of vmassd over a log compares byte for byte with vmass-replay --out over the same
 // log; a row before the first estimate (mass_known false) leaves its mass cells empty. The
 // status CSV has one row per status message: time_s, uptime_s, state, version, mass_kg, ticks,
 // tick_overruns, jitter_p99_us, frames_received, frames_decoded, frames_malformed,
-// inputs_valid (of num_inputs), num_inputs. Exit codes: 0 ok, 1 a CSV cannot be written, 2 usage
-// or a file that is not an LCM log; a message that does not decode is counted and skipped.
+// inputs_valid (of num_inputs), num_inputs. The pairs CSV (vmassd with lcm.publish_pairs) has
+// one row per candidate pair: time_s, block, verdict, accepted, y_n, delta_accel_mps2, weight,
+// noise_std_n, rotating_n, rotating_mass_kg, gear, test_ratio (a per-gear study of the rotating
+// masses reads it: tools/vmass_suite/pairs_by_gear.py). Exit codes: 0 ok, 1 a CSV cannot be
+// written, 2 usage or a file that is not an LCM log; a message that does not decode is counted and
+// skipped.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -20,6 +24,7 @@
 #include <CLI/CLI.hpp>
 #include <lcm/lcm-cpp.hpp>
 #include <vmass/mass_estimate_t.hpp>
+#include <vmass/pair_t.hpp>
 #include <vmass/status_t.hpp>
 
 #include "exit_code.hpp"
@@ -31,12 +36,13 @@ using vmass::tools::kExitOk;
 using vmass::tools::kExitUsage;
 
 struct Options {
-  std::string log, estimates_csv, status_csv;
-  std::string estimate_channel = "VMASS_ESTIMATE", status_channel = "VMASS_STATUS";
+  std::string log, estimates_csv, status_csv, pairs_csv;
+  std::string estimate_channel = "VMASS_ESTIMATE", status_channel = "VMASS_STATUS",
+              pairs_channel = "VMASS_PAIRS";
 };
 
 struct Counts {
-  long estimates = 0, statuses = 0, undecodable = 0, other = 0;
+  long estimates = 0, statuses = 0, pairs = 0, undecodable = 0, other = 0;
 };
 
 using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
@@ -77,6 +83,14 @@ void write_status(std::FILE* f, const vmass::status_t& s) {
                static_cast<long long>(s.frames_malformed), valid, s.num_inputs);
 }
 
+/// A candidate pair (the ticks where a block offered none are not written).
+void write_pair(std::FILE* f, const vmass::pair_t& p) {
+  std::fprintf(f, "%.2f,%s,%s,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g\n",
+               static_cast<double>(p.utime) * 1e-6, p.block_name.c_str(), p.verdict_name.c_str(),
+               p.accepted ? 1 : 0, p.y_n, p.delta_accel_mps2, p.weight, p.noise_std_n, p.rotating_n,
+               p.rotating_mass_kg, static_cast<int>(p.gear), p.test_ratio);
+}
+
 /// Decodes one event into `msg`; false (counted) when it does not decode.
 template <typename Message>
 bool decode(const lcm::LogEvent& event, Message* msg, Counts* counts) {
@@ -95,6 +109,9 @@ int main(int argc, char** argv) {
   app.add_option("--status", o.status_csv, "write the status messages here");
   app.add_option("--estimate-channel", o.estimate_channel, "default VMASS_ESTIMATE");
   app.add_option("--status-channel", o.status_channel, "default VMASS_STATUS");
+  app.add_option("--pairs", o.pairs_csv,
+                 "write the candidate pairs here (vmassd with lcm.publish_pairs: true)");
+  app.add_option("--pairs-channel", o.pairs_channel, "default VMASS_PAIRS");
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return *code;
 
   lcm::LogFile log(o.log, "r");
@@ -110,13 +127,18 @@ int main(int argc, char** argv) {
   File st = open_csv(o.status_csv,
                      "time_s,uptime_s,state,version,mass_kg,ticks,tick_overruns,jitter_p99_us,"
                      "frames_received,frames_decoded,frames_malformed,inputs_valid,num_inputs");
-  if ((!o.estimates_csv.empty() && !est) || (!o.status_csv.empty() && !st)) {
+  File pairs = open_csv(o.pairs_csv,
+                        "time_s,block,verdict,accepted,y_n,delta_accel_mps2,weight,noise_std_n,"
+                        "rotating_n,rotating_mass_kg,gear,test_ratio");
+  if ((!o.estimates_csv.empty() && !est) || (!o.status_csv.empty() && !st) ||
+      (!o.pairs_csv.empty() && !pairs)) {
     std::cerr << "vmass-lcmlog-csv: cannot write the CSV\n";
     return kExitFailure;
   }
   Counts counts;
   vmass::mass_estimate_t e;
   vmass::status_t s;
+  vmass::pair_t pair;
   for (; event != nullptr; event = log.readNextEvent()) {
     if (event->channel == o.estimate_channel) {
       if (!decode(*event, &e, &counts)) continue;
@@ -126,13 +148,20 @@ int main(int argc, char** argv) {
       if (!decode(*event, &s, &counts)) continue;
       ++counts.statuses;
       if (st) write_status(st.get(), s);
+    } else if (event->channel == o.pairs_channel) {
+      if (!decode(*event, &pair, &counts)) continue;
+      ++counts.pairs;
+      if (pairs && pair.has_candidate) write_pair(pairs.get(), pair);
     } else {
       ++counts.other;
     }
   }
-  const bool written = (!est || std::fflush(est.get()) == 0) && (!st || std::fflush(st.get()) == 0);
+  const bool written = (!est || std::fflush(est.get()) == 0) &&
+                       (!st || std::fflush(st.get()) == 0) &&
+                       (!pairs || std::fflush(pairs.get()) == 0);
   std::cerr << "vmass-lcmlog-csv: " << o.log << ": " << counts.estimates << " estimates, "
-            << counts.statuses << " status messages, " << counts.other << " on other channels, "
-            << counts.undecodable << " that do not decode\n";
+            << counts.statuses << " status messages, " << counts.pairs << " pair records, "
+            << counts.other << " on other channels, " << counts.undecodable
+            << " that do not decode\n";
   return written ? kExitOk : kExitFailure;
 }

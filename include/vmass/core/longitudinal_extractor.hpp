@@ -161,13 +161,17 @@ class LongitudinalExtractor {
   struct PairTerms {
     TimeUs time_us = 0;
     double delta_accel_mps2 = 0.0;
-    double noise_n = 0.0;       ///< the gates' noise scale
-    double pair_noise_n = 0.0;  ///< RegressionPair::noise_std_n
-    double rotating_n = 0.0;    ///< RegressionPair::rotating_n
+    double noise_n = 0.0;           ///< the gates' noise scale
+    double pair_noise_n = 0.0;      ///< RegressionPair::noise_std_n
+    double rotating_n = 0.0;        ///< RegressionPair::rotating_n
+    int gear = 0;                   ///< RegressionPair::gear
+    double rotating_mass_kg = 0.0;  ///< RegressionPair::rotating_mass_kg
   };
   PairTerms pair_terms(const Record& now, const Record& then, double delta_accel) const;
   /// The force and plausibility gates of a pair whose differenced force is y.
   Extraction finish(const PairTerms& terms, double y, Extraction out) const;
+  /// m_rot of the record's gear (or derived-ratio plateau), kg.
+  double rotating_mass_kg(const Record& now) const;
   /// m_rot(gear) dv' over the window, N.
   double rotating_n(const Record& now, const Record& then) const;
   void keep_pending(const PairTerms& terms);

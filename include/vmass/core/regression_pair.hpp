@@ -39,6 +39,10 @@ struct RegressionPair {
   /// Longitudinal: the rotating-mass term m_rot dv' already subtracted from y_n, N (0 for the
   /// lateral block). An error in m_rot biases the mass through it (RotatingMassSensitivity).
   double rotating_n = 0.0;
+  /// Longitudinal: the gear (or derived-ratio plateau) that term's rotating mass is taken for,
+  /// 0 none, and that mass as configured, kg: what a study of the rotating masses per gear reads.
+  int gear = 0;
+  double rotating_mass_kg = 0.0;
 };
 
 /// The pair's weight relative to a regressor whose noise std is reference_noise_n (see
