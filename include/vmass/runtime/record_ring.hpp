@@ -56,7 +56,13 @@ class RingFeed final : public RecordFeed {
   }
   bool wait_for_more(TimeUs t) override {
     if (!recording_ || stop_.load(std::memory_order_relaxed)) return false;
-    if (ring_.pushed_through_us.load(std::memory_order_acquire) >= t) return false;
+    if (ring_.pushed_through_us.load(std::memory_order_acquire) >= t) {
+      // Every record stamped <= t is in the ring now, but the reader may have pushed one (and
+      // moved on) after peek() found the ring empty: look once more before the tick goes on.
+      if (looked_again_at_us_ == t) return false;
+      looked_again_at_us_ = t;
+      return true;
+    }
     std::this_thread::sleep_for(std::chrono::microseconds(50));
     return true;
   }
@@ -67,6 +73,7 @@ class RingFeed final : public RecordFeed {
   const std::atomic<bool>& stop_;
   InputRecord held_;  ///< popped, not taken yet (stamped after the tick that looked)
   bool has_held_ = false;
+  TimeUs looked_again_at_us_ = INT64_MIN;  ///< the tick whose last look is done
 };
 
 }  // namespace vmass::runtime
