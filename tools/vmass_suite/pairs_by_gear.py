@@ -80,11 +80,10 @@ def read_pairs(paths, accepted_only):
 
 def line_through(points):
     """Weighted line y = a + b x through (x, y, std) points; (a, b, std of b) or None."""
-    w = [1.0 / (s * s) for _, _, s in points if s > 0 and math.isfinite(s)]
-    if len(w) < 2:
+    kept = [(x, y, 1.0 / (s * s)) for x, y, s in points if s > 0 and math.isfinite(s)]
+    if len(kept) < 2:
         return None
-    xs = [x for x, _, s in points if s > 0 and math.isfinite(s)]
-    ys = [y for _, y, s in points if s > 0 and math.isfinite(s)]
+    xs, ys, w = zip(*kept)
     sw = sum(w)
     mx = sum(wi * x for wi, x in zip(w, xs)) / sw
     my = sum(wi * y for wi, y in zip(w, ys)) / sw
