@@ -9,6 +9,8 @@ namespace {
 // Share of the prime mover's inertia still coupled to the wheels through an unlocked converter
 // (turbine and gearbox side).
 constexpr double kUnlockedInertiaShare = 0.2;
+// After an upshift the prime mover turns at least this much above the downshift speed.
+constexpr double kUpshiftMargin = 1.1;
 }  // namespace
 
 std::string_view transmission_name(Transmission t) {
@@ -166,7 +168,12 @@ void Powertrain::update_shift(double dt_s, double speed_mps) {
   if (p_.hold_gear > 0) return;
   const double w = pm_speed_radps(gear_, speed_mps);
   if (time_in_gear_s_ < p_.min_time_in_gear_s) return;
-  if (w > p_.upshift_speed_radps && gear_ < p_.gear_count()) {
+  // A gearbox controller does not upshift into a speed it would downshift from at once (a wide
+  // first step, as a truck automatic's, would otherwise hunt between the two gears).
+  const bool upshift_holds =
+      gear_ < p_.gear_count() &&
+      pm_speed_radps(gear_ + 1, speed_mps) >= kUpshiftMargin * p_.downshift_speed_radps;
+  if (w > p_.upshift_speed_radps && upshift_holds) {
     target_gear_ = gear_ + 1;
     shift_time_s_ = 0.0;
   } else if (w < p_.downshift_speed_radps && gear_ > 1) {

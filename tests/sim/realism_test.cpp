@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <utility>
 #include <vector>
 
 #include "sim_test_util.hpp"
@@ -230,6 +231,31 @@ TEST(SimRealism, TorqueConverterMultipliesAtStallAndLocksUp) {
   cruising.step(0.0, 0.001, 200.0, 20.0);
   EXPECT_TRUE(cruising.converter_locked());
   EXPECT_DOUBLE_EQ(cruising.reported_wheel_torque_nm(), cruising.wheel_torque_nm());
+}
+
+// A first step wider than the upshift and downshift speeds' ratio (a truck automatic's): an
+// upshift at the upshift speed would land below the downshift speed and hunt between the two
+// gears. The gearbox holds first until second turns 10 % above the downshift speed.
+TEST(SimPowertrain, AWideFirstStepDoesNotHunt) {
+  PowertrainParams p;
+  p.gear_ratios = {3.6, 1.9, 1.4, 1.0};
+  p.upshift_speed_radps = 1650.0 * 3.14159265358979 / 30.0;
+  p.downshift_speed_radps = 1000.0 * 3.14159265358979 / 30.0;
+  auto gear_after_10_s = [&](double speed_mps) {
+    Powertrain pt(p, 0.31);
+    pt.reset(2.0, 100.0);
+    int shifts = 0, gear = pt.selected_gear();
+    for (int k = 0; k < 10000; ++k) {
+      pt.step(k * 0.001, 0.001, 300.0, speed_mps);
+      shifts += pt.selected_gear() != gear;
+      gear = pt.selected_gear();
+    }
+    return std::pair{gear, shifts};
+  };
+  // 4.2 m/s: first turns past the upshift speed, second would turn below the downshift speed.
+  EXPECT_EQ(gear_after_10_s(4.2), std::pair(1, 0));
+  // 5.0 m/s: second turns 17 % above the downshift speed: one upshift, and it stays.
+  EXPECT_EQ(gear_after_10_s(5.0), std::pair(2, 1));
 }
 
 // A clutch gearbox's shift is a torque reduction of the engine itself (the driver lifts off, or
