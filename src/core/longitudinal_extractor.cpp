@@ -52,6 +52,7 @@ std::string LongitudinalParams::validate() const {
   c.non_negative("min_excitation_sigma", min_excitation_sigma);
   c.non_negative("min_speed_mps", min_speed_mps);
   c.non_negative("settle_s", settle_s);
+  c.non_negative("converter_shift_settle_s", converter_shift_settle_s);
   c.in_open_range("brake_applied_weight_fraction", brake_applied_weight_fraction, 0.0, 1.0);
   c.positive("noise_memory_s", noise_memory_s);
   c.positive("scale_memory_s", scale_memory_s);
@@ -70,6 +71,7 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
       accel_x_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       accel_y_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       force_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
+      converter_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       speed_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       brake_filter_(differencing.filter_cutoff_hz, differencing.tick_rate_hz),
       history_(differencing),
@@ -89,8 +91,11 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
       pitch_scale_(1.0 + vehicle.pitch_gradient_deg_per_g * kRadPerDeg),
       window_ticks_(differencing.steps()),
       settle_ticks_(std::lround(params.settle_s * differencing.tick_rate_hz)),
+      converter_shift_settle_ticks_(
+          std::lround(params.converter_shift_settle_s * differencing.tick_rate_hz)),
       derive_ratio_(vehicle.derive_overall_ratio),
-      ratio_tracker_(vehicle, RatioTrackerParams{}, differencing.tick_rate_hz) {}
+      ratio_tracker_(vehicle, RatioTrackerParams{}, differencing.tick_rate_hz),
+      converter_(vehicle) {}
 
 void LongitudinalExtractor::reset() {
   restart_stretch();
@@ -103,6 +108,7 @@ void LongitudinalExtractor::restart_stretch() {
   accel_x_filter_.reset();
   accel_y_filter_.reset();
   force_filter_.reset();
+  converter_filter_.reset();
   speed_filter_.reset();
   brake_filter_.reset();
   ratio_tracker_.restart();
@@ -135,15 +141,22 @@ double LongitudinalExtractor::wheel_torque_nm(const Sample& s) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-bool LongitudinalExtractor::driveline_slips(const Sample& s) const {
+ConverterReading LongitudinalExtractor::coupling(const Sample& s) const {
+  ConverterReading locked;
+  locked.coupling = DrivelineCoupling::kLocked;
   if (s.has(Input::kWheelTorque) || !s.has(Input::kEngineSpeed) || !s.has(Input::kGear)) {
-    return false;
+    return locked;  // nothing to check it by (a wheel torque holds the converter already)
   }
-  const double through_gear_radps =
+  const double turbine_radps =
       std::abs(s.speed_mps) / vehicle_.wheel_radius_m * vehicle_.overall_ratio(s.gear);
-  if (!(through_gear_radps > 0.0)) return true;
-  return !(std::abs(s.engine_speed_radps - through_gear_radps) <=
-           vehicle_.max_driveline_slip_fraction * through_gear_radps);
+  return converter_.read(s.engine_speed_radps, turbine_radps);
+}
+
+// Only an automatic read through its map: a wheel torque or a clutch gearbox's engine report
+// shows the shift's dip, and the plain settle suffices there.
+bool LongitudinalExtractor::hidden_shift_in_window() const {
+  return vehicle_.knows_converter_map() && !derive_ratio_ &&
+         ticks_since_shift_ < window_ticks_ + converter_shift_settle_ticks_;
 }
 
 // The derived ratio's "same gear": locked on a confirmed plateau, the previous tick's.
@@ -172,7 +185,10 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   if (!s.has_all(required_)) return false;
   if (derive_ratio_) ratio_tracker_.step(s.engine_speed_radps, s.speed_mps);
   const double r = vehicle_.wheel_radius_m;
-  double force = wheel_torque_nm(s) / r;
+  const ConverterReading converter = derive_ratio_ ? ConverterReading{} : coupling(s);
+  const double engine_path_force = wheel_torque_nm(s) / r;
+  const bool multiplied = converter.coupling == DrivelineCoupling::kConverter;
+  double force = multiplied ? engine_path_force * converter.torque_ratio : engine_path_force;
   const double force_n_reported = force;
   const bool brakes = braking(s);
   // The brake force is subtracted wherever the pressure is known: below the "applied" level it
@@ -187,9 +203,13 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   const bool gear_ok = derive_ratio_
                            ? ratio_locked_on_plateau()
                            : (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) &&
-                                 !driveline_slips(s);
+                                 converter.coupling != DrivelineCoupling::kSlipping;
+  const bool shifted = s.has(Input::kGear) && s.gear != previous_gear_;
+  ticks_since_shift_ = shifted ? 0 : ticks_since_shift_ + 1;
   previous_gear_ = gear_identity(s);
   in->force_n = force;
+  in->converter_force_n = multiplied ? engine_path_force * (converter.torque_ratio - 1.0) : 0.0;
+  in->converter_multiplying = multiplied && converter.torque_ratio > 1.0;
   const bool overrun = force_n_reported < 0.0 && !vehicle_.electric_drive;
   in->clean = (!brakes || params_.use_braking) && (!overrun || params_.use_overrun) && gear_ok &&
               std::abs(s.speed_mps) >= params_.min_speed_mps;
@@ -197,7 +217,7 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
 }
 
 LongitudinalExtractor::Record LongitudinalExtractor::filtered_record(const Sample& s,
-                                                                     double force_n) {
+                                                                     const TickInputs& in) {
   const double speed = speed_filter_.step(s.speed_mps);
   const double wheel_accel = has_previous_speed_ ? (speed - previous_speed_) * tick_rate_hz_ : 0.0;
   previous_speed_ = speed;
@@ -207,8 +227,10 @@ LongitudinalExtractor::Record LongitudinalExtractor::filtered_record(const Sampl
                 accel_x_filter_.step(s.accel_x_mps2),
                 wheel_accel,
                 accel_y_filter_.step(ay),
-                force_filter_.step(force_n),
-                gear_identity(s)};
+                force_filter_.step(in.force_n),
+                converter_filter_.step(in.converter_force_n),
+                gear_identity(s),
+                in.converter_multiplying};
 }
 
 void LongitudinalExtractor::update_noise(double residual_n) {
@@ -217,8 +239,11 @@ void LongitudinalExtractor::update_noise(double residual_n) {
 }
 
 double LongitudinalExtractor::rotating_mass_kg(const Record& now) const {
-  return derive_ratio_ ? ratio_tracker_.rotating_mass_kg(now.gear)
-                       : vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
+  if (derive_ratio_) return ratio_tracker_.rotating_mass_kg(now.gear);
+  const double gear_kg = vehicle_.rotating_mass_for_gear(now.gear, now.gear > 0);
+  return now.converter_multiplying
+             ? converter_.unlocked_rotating_mass_kg(gear_kg, vehicle_.rotating_mass_kg)
+             : gear_kg;
 }
 
 double LongitudinalExtractor::rotating_n(const Record& now, const Record& then) const {
@@ -300,7 +325,8 @@ Extraction LongitudinalExtractor::gate(const Record& now, const Record& then, Ex
 }
 
 // The pair's own noise: the measured residual scale and, in quadrature, what the rotating mass's
-// uncertainty makes of its term (large in low gears, where the converter may also be unlocked).
+// uncertainty makes of its term (large in low gears) and the converter map's of its
+// multiplication (the converter's part of dF, at the pair's own ends).
 LongitudinalExtractor::PairTerms LongitudinalExtractor::pair_terms(const Record& now,
                                                                    const Record& then,
                                                                    double delta_accel) const {
@@ -309,7 +335,9 @@ LongitudinalExtractor::PairTerms LongitudinalExtractor::pair_terms(const Record&
   t.delta_accel_mps2 = delta_accel;
   t.noise_n = force_noise_n();
   t.rotating_n = rotating_n(now, then);
-  t.pair_noise_n = std::hypot(t.noise_n, vehicle_.rotating_mass_accuracy_fraction * t.rotating_n);
+  t.converter_n = now.converter_force_n - then.converter_force_n;
+  t.pair_noise_n = std::hypot(t.noise_n, vehicle_.rotating_mass_accuracy_fraction * t.rotating_n,
+                              vehicle_.torque_converter_map_accuracy_fraction * t.converter_n);
   t.gear = now.gear;
   t.rotating_mass_kg = rotating_mass_kg(now);
   return t;
@@ -339,6 +367,7 @@ Extraction LongitudinalExtractor::finish(const PairTerms& terms, double y, Extra
   out.pair.weight = params_.weight;
   out.pair.noise_std_n = terms.pair_noise_n;
   out.pair.rotating_n = terms.rotating_n;
+  out.pair.converter_n = terms.converter_n;
   out.pair.gear = terms.gear;
   out.pair.rotating_mass_kg = terms.rotating_mass_kg;
   return out;
@@ -386,11 +415,11 @@ Extraction LongitudinalExtractor::step(const Sample& s) {
     return out;
   }
   clean_ticks_ = in.clean ? clean_ticks_ + 1 : 0;
-  const Record now = filtered_record(s, in.force_n);
+  const Record now = filtered_record(s, in);
   filtered_force_.push(now.force_n);
   const Record* then = history_.push_and_get_then(now, &out.verdict);
   if (then == nullptr) return out;
-  if (clean_ticks_ < window_ticks_ + settle_ticks_) {
+  if (clean_ticks_ < window_ticks_ + settle_ticks_ || (in.clean && hidden_shift_in_window())) {
     out.verdict = in.clean ? PairVerdict::kSettling : PairVerdict::kNotClean;
     return out;
   }

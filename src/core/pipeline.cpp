@@ -82,6 +82,7 @@ void divide_force(RegressionPair* pair, double scale) {
   pair->y_n /= scale;
   pair->noise_std_n /= scale;
   pair->rotating_n /= scale;
+  pair->converter_n /= scale;
 }
 
 }  // namespace
@@ -142,7 +143,7 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
   divide_force(&longitudinal.pair, pair_scale_);
   longitudinal.pair.information = pair_information_;
   lateral.pair.information = pair_information_;
-  if (longitudinal.has_pair()) rotating_sensitivity_.add(longitudinal.pair);
+  if (longitudinal.has_pair()) add_to_sensitivities(longitudinal.pair);
   result->events[static_cast<int>(Block::kLongitudinal)] =
       supervisor_.offer(Block::kLongitudinal, longitudinal, *regressor_, &result->estimate_changed);
   // Pairs kept while the driveline lag was unknown, now at the identified lag.
@@ -150,11 +151,16 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
   while (longitudinal_.pop_released(&released)) {
     divide_force(&released.pair, pair_scale_);
     released.pair.information = pair_information_;
-    if (released.has_pair()) rotating_sensitivity_.add(released.pair);
+    if (released.has_pair()) add_to_sensitivities(released.pair);
     supervisor_.offer_late(Block::kLongitudinal, released, *regressor_, &result->estimate_changed);
   }
   result->events[static_cast<int>(Block::kLateral)] =
       supervisor_.offer(Block::kLateral, lateral, *regressor_, &result->estimate_changed);
+}
+
+void Pipeline::add_to_sensitivities(const RegressionPair& pair) {
+  rotating_sensitivity_.add(pair);
+  converter_sensitivity_.add(pair);
 }
 
 void Pipeline::offer_monitor_pairs(const Sample& sample) {
@@ -663,10 +669,13 @@ double Pipeline::model_std_kg(double mass_kg) const {
       learnt_.learnt() ? learnt_.state().log_scale_var : declared_scale_variance(v);
   const double relative =
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
-  // The rotating masses' error moves the mass by their share of it, in kg (a truck's low gears).
+  // The rotating masses' and the converter map's errors move the mass by their share of it, in
+  // kg (a truck's low gears, an automatic pulling away).
   const double rotating_kg = kUniformStdPerBound * v.rotating_mass_accuracy_fraction *
                              rotating_sensitivity_.sensitivity_kg();
-  return std::hypot(relative * std::abs(mass_kg), rotating_kg);
+  const double converter_kg = kUniformStdPerBound * v.torque_converter_map_accuracy_fraction *
+                              converter_sensitivity_.sensitivity_kg();
+  return std::hypot(relative * std::abs(mass_kg), rotating_kg, converter_kg);
 }
 
 double Pipeline::published_half_width(const RegressorState& state) const {

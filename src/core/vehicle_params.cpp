@@ -77,6 +77,24 @@ std::string VehicleParams::validate() const {
         driveline_efficiency_accuracy_fraction < 0.5)) {
     c.fail("driveline_efficiency_accuracy_fraction", "must be in [0, 0.5)");
   }
+  if (torque_converter_stall_torque_ratio != 0.0) {
+    if (!(torque_converter_stall_torque_ratio > 1.0 && torque_converter_stall_torque_ratio < 5.0)) {
+      c.fail("torque_converter_stall_torque_ratio", "must be 0 (unknown) or in (1, 5)");
+    }
+    if (!(torque_converter_coupling_speed_ratio > 0.5 &&
+          torque_converter_coupling_speed_ratio < 1.0)) {
+      c.fail("torque_converter_coupling_speed_ratio",
+             "must be in (0.5, 1) with torque_converter_stall_torque_ratio");
+    }
+  }
+  if (!(torque_converter_map_accuracy_fraction >= 0.0 &&
+        torque_converter_map_accuracy_fraction <= 1.0)) {
+    c.fail("torque_converter_map_accuracy_fraction", "must be in [0, 1]");
+  }
+  if (!(torque_converter_turbine_inertia_share >= 0.0 &&
+        torque_converter_turbine_inertia_share <= 1.0)) {
+    c.fail("torque_converter_turbine_inertia_share", "must be in [0, 1]");
+  }
   return c.message();
 }
 

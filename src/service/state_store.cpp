@@ -171,6 +171,11 @@ std::uint64_t learnt_fingerprint(const PipelineParams& p) {
   // A derived ratio's force carries the speed signal's scale, not the radius's: another car's
   // scale. Only then, so that every other config keeps its fingerprint.
   if (v.derive_overall_ratio) put(&text, "derived_ratio", v.engine_inertia_kgm2);
+  // Pairs read through a converter's map carry its curve; only then, for the same reason.
+  if (v.knows_converter_map()) {
+    put(&text, "converter", v.torque_converter_stall_torque_ratio);
+    put(&text, "coupling", v.torque_converter_coupling_speed_ratio);
+  }
   return fnv1a(text.data(), text.size());
 }
 

@@ -28,6 +28,15 @@ void derive_ratio(const TrueVehicle& v, double rotating_error_scale, double effi
   p->torque_converter = v.powertrain.has_torque_converter();  // the gearbox's kind is known
 }
 
+/// An automatic's converter map as its maker gives it: the curve the TCU's own model holds, off
+/// the converter in the car by tc_model_error in TR - 1 when `errors`.
+void converter_map(const PowertrainParams& pt, bool errors, VehicleParams* p) {
+  const double map_error = errors ? pt.tc_model_error : 0.0;
+  p->torque_converter_stall_torque_ratio =
+      1.0 + (pt.tc_stall_torque_ratio - 1.0) * (1.0 + map_error);
+  p->torque_converter_coupling_speed_ratio = pt.tc_coupling_speed_ratio;
+}
+
 /// The `vehicle:` values its engineer knows: the datasheet's, with its errors when `errors`.
 VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k) {
   const TrueVehicle& v = d.vehicle;
@@ -60,6 +69,7 @@ VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k)
     p.gear_ratios = v.powertrain.gear_ratios;
     p.final_drive_ratio = v.powertrain.final_drive_ratio;
     p.driveline_efficiency = v.powertrain.efficiency;
+    if (v.powertrain.has_torque_converter()) converter_map(v.powertrain, errors, &p);
   }
   if (d.sensors.torque == TorqueSignal::kEngineTorque && !d.sensors.gear_index) {
     derive_ratio(v, rot, declared ? e.declared_torque_accuracy : 0.0, &p);

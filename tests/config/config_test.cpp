@@ -181,6 +181,19 @@ TEST(ConfigManyHands, ValidationErrorsNameTheLineOfTheirKey) {
       << c.error;
 }
 
+TEST(ConfigManyHands, AConverterMapNeedsItsCouplingPoint) {
+  std::string text = kMinimal;
+  text.insert(text.find("suspension:"), "  torque_converter_stall_torque_ratio: 2.1\n");
+  const ConfigLoad c = load_config_text(text, "c.yaml");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error.find("vehicle.torque_converter_coupling_speed_ratio: must be in (0.5, 1) "
+                         "with torque_converter_stall_torque_ratio"),
+            std::string::npos)
+      << c.error;
+  text.insert(text.find("suspension:"), "  torque_converter_coupling_speed_ratio: 0.86\n");
+  EXPECT_TRUE(load_config_text(text, "c.yaml").ok());
+}
+
 TEST(ConfigManyHands, SpecialFilesAreRefusedWithTheirKind) {
   EXPECT_EQ(load_config("/dev/zero").error,
             "/dev/zero: cannot read the config: is a character device");

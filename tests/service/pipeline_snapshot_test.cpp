@@ -394,6 +394,17 @@ TEST_F(StateFileTest, EachSectionHasItsOwnFingerprint) {
   PipelineParams derived = params;
   derived.vehicle.derive_overall_ratio = true;
   EXPECT_NE(service::learnt_fingerprint(derived), learnt_fp);
+  // Another converter map: pairs read through it carry its curve. No map keeps the fingerprint.
+  PipelineParams mapped = params;
+  mapped.vehicle.torque_converter_stall_torque_ratio = 2.0;
+  mapped.vehicle.torque_converter_coupling_speed_ratio = 0.85;
+  const std::uint64_t mapped_fp = service::learnt_fingerprint(mapped);
+  EXPECT_NE(mapped_fp, learnt_fp);
+  mapped.vehicle.torque_converter_coupling_speed_ratio = 0.88;
+  EXPECT_NE(service::learnt_fingerprint(mapped), mapped_fp);
+  PipelineParams unmapped = params;
+  unmapped.vehicle.torque_converter_map_accuracy_fraction = 0.1;
+  EXPECT_EQ(service::learnt_fingerprint(unmapped), learnt_fp);
 
   r = service::load_state_file(p, state_.fingerprint ^ 1, learnt_fp);
   EXPECT_EQ(r.status, service::StateLoadStatus::kRejected);

@@ -62,7 +62,7 @@ inline constexpr std::array<Field<LoadChangeParams>, 8> kLoadChangeFields{{
     {"filter_cutoff_hz", &LoadChangeParams::filter_cutoff_hz},
 }};
 
-inline constexpr std::array<Field<LongitudinalParams>, 15> kLongitudinalFields{{
+inline constexpr std::array<Field<LongitudinalParams>, 16> kLongitudinalFields{{
     {"enabled", &LongitudinalParams::enabled},
     {"max_abs_accel_y_mps2", &LongitudinalParams::max_abs_accel_y_mps2},
     {"min_abs_delta_accel_x_mps2", &LongitudinalParams::min_abs_delta_accel_x_mps2},
@@ -71,6 +71,7 @@ inline constexpr std::array<Field<LongitudinalParams>, 15> kLongitudinalFields{{
     {"weight", &LongitudinalParams::weight},
     {"min_excitation_sigma", &LongitudinalParams::min_excitation_sigma},
     {"settle_s", &LongitudinalParams::settle_s},
+    {"converter_shift_settle_s", &LongitudinalParams::converter_shift_settle_s},
     {"use_braking", &LongitudinalParams::use_braking},
     {"use_overrun", &LongitudinalParams::use_overrun},
     {"brake_applied_weight_fraction", &LongitudinalParams::brake_applied_weight_fraction},

@@ -14,7 +14,7 @@
 
 namespace vmass {
 
-inline constexpr std::array<Field<VehicleParams>, 29> kVehicleFields{{
+inline constexpr std::array<Field<VehicleParams>, 33> kVehicleFields{{
     {"empty_mass_kg", &VehicleParams::empty_mass_kg, true},
     {"wheelbase_m", &VehicleParams::wheelbase_m, true},
     {"cg_to_front_axle_m", &VehicleParams::cg_to_front_axle_m, true},
@@ -47,6 +47,13 @@ inline constexpr std::array<Field<VehicleParams>, 29> kVehicleFields{{
     {"engine_inertia_kgm2", &VehicleParams::engine_inertia_kgm2},
     {"driveline_efficiency_accuracy_fraction",
      &VehicleParams::driveline_efficiency_accuracy_fraction},
+    {"torque_converter_stall_torque_ratio", &VehicleParams::torque_converter_stall_torque_ratio},
+    {"torque_converter_coupling_speed_ratio",
+     &VehicleParams::torque_converter_coupling_speed_ratio},
+    {"torque_converter_map_accuracy_fraction",
+     &VehicleParams::torque_converter_map_accuracy_fraction},
+    {"torque_converter_turbine_inertia_share",
+     &VehicleParams::torque_converter_turbine_inertia_share},
 }};
 
 /// Reads the section; unknown keys are errors. Throws ConfigError.

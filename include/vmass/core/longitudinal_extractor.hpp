@@ -26,7 +26,9 @@
 //     in overrun (an ECU's drag torque is its least accurate; use_overrun allows it; an
 //     electric drive's regeneration is clean), no gear change and a valid gear (with
 //     vehicle.derive_overall_ratio: the ratio locked on one confirmed plateau of
-//     OverallRatioTracker), speed above min_speed_mps, |a_y| small;
+//     OverallRatioTracker), a driveline that is locked or, with the converter's map
+//     configured, driving through an unlocked converter (ConverterMap: the engine torque times
+//     its torque ratio), speed above min_speed_mps, |a_y| small;
 //   - an outlier gate that cannot lock in: the mass the pair implies, y / da, must lie in the
 //     plausible band [0.5 empty, 1.5 maximum permissible] (2.5 empty without a maximum).
 // Without a brake-pressure signal the brake-light switch decides; with neither, the block needs
@@ -40,6 +42,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vmass/core/converter_map.hpp"
 #include "vmass/core/delay_line.hpp"
 #include "vmass/core/differencing_history.hpp"
 #include "vmass/core/extraction.hpp"
@@ -69,6 +72,11 @@ struct LongitudinalParams {
   double min_excitation_sigma = 3.0;
   double min_speed_mps = 2.0;
   double settle_s = 0.5;  ///< clean time before a window, after a brake or shift
+  /// Clean time before a window after a gear change, when the force is an automatic's engine
+  /// torque read through its converter map: the gearbox hands the torque over in its clutches,
+  /// the engine's report does not show the dip, and the low-pass remembers the unseen dip for
+  /// about a second (a pair whose window starts in it reads the mass low).
+  double converter_shift_settle_s = 1.5;
   bool use_braking = false;
   /// Take pairs while a combustion engine is dragged (negative reported torque, overrun). An ECU
   /// reports its drag torque from a friction model, its least accurate figure (20-40 % off is
@@ -129,11 +137,15 @@ class LongitudinalExtractor {
     double wheel_accel_mps2;
     double accel_y_mps2;
     double force_n;
+    double converter_force_n;  ///< the converter's multiplication in force_n, N
     int gear;
+    bool converter_multiplying;
   };
   struct TickInputs {
     double force_n = 0.0;
-    bool clean = false;  ///< no brake, valid gear, fast enough
+    double converter_force_n = 0.0;      ///< force_n's part from TR - 1 (ConverterMap)
+    bool converter_multiplying = false;  ///< below the converter's coupling point (TR > 1)
+    bool clean = false;                  ///< no brake, valid gear, fast enough
   };
 
   /// The filters and the differencing start again (no window spans a hole); held pairs stay.
@@ -141,15 +153,18 @@ class LongitudinalExtractor {
   bool read(const Sample& s, TickInputs* in);
   /// C_wheel from the wheel torque, or from the engine torque through the gear; NaN if neither.
   double wheel_torque_nm(const Sample& s) const;
-  /// The engine turns faster or slower than the wheels through the gear (converter, clutch).
-  bool driveline_slips(const Sample& s) const;
+  /// How the engine's torque reaches the wheels: locked, through the converter's map, or
+  /// slipping (the engine faster or slower than the wheels through the gear, unusable).
+  ConverterReading coupling(const Sample& s) const;
+  /// An automatic's gear change is still in the filtered force (converter_shift_settle_s).
+  bool hidden_shift_in_window() const;
   /// The derived ratio (derive_overall_ratio) is locked on the previous tick's confirmed plateau.
   bool ratio_locked_on_plateau() const;
   /// What a pair's two ends must share: the gear, or the derived ratio's plateau (0: none).
   int gear_identity(const Sample& s) const;
   bool braking(const Sample& s);
   bool physically_possible(double force_n, const Sample& s) const;
-  Record filtered_record(const Sample& s, double force_n);
+  Record filtered_record(const Sample& s, const TickInputs& in);
   void update_noise(double residual_n);
   /// The pair's acceleration change from the configured source.
   double delta_accel(const Record& now, const Record& then) const;
@@ -164,6 +179,7 @@ class LongitudinalExtractor {
     double noise_n = 0.0;           ///< the gates' noise scale
     double pair_noise_n = 0.0;      ///< RegressionPair::noise_std_n
     double rotating_n = 0.0;        ///< RegressionPair::rotating_n
+    double converter_n = 0.0;       ///< RegressionPair::converter_n
     int gear = 0;                   ///< RegressionPair::gear
     double rotating_mass_kg = 0.0;  ///< RegressionPair::rotating_mass_kg
   };
@@ -180,7 +196,8 @@ class LongitudinalExtractor {
   LongitudinalParams params_;
   InputMask required_;
   double tick_rate_hz_;
-  LowPassFilter accel_x_filter_, accel_y_filter_, force_filter_, speed_filter_, brake_filter_;
+  LowPassFilter accel_x_filter_, accel_y_filter_, force_filter_, converter_filter_, speed_filter_,
+      brake_filter_;
   DifferencingHistory<Record> history_;
   DelayLine<double> filtered_force_;  ///< the last max_lag + window ticks of filtered force
   LagEstimator lag_;
@@ -204,9 +221,12 @@ class LongitudinalExtractor {
   long clean_ticks_ = 0;
   long window_ticks_;
   long settle_ticks_;
+  long converter_shift_settle_ticks_;
+  long ticks_since_shift_ = 0;  ///< since the gear signal last changed
   // vehicle.derive_overall_ratio: the ratio and its plateaus (the gear) from the engine speed.
   bool derive_ratio_;
   OverallRatioTracker ratio_tracker_;
+  ConverterMap converter_;
 };
 
 }  // namespace vmass

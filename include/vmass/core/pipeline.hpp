@@ -46,8 +46,8 @@
 #include "vmass/core/learnt_scale.hpp"
 #include "vmass/core/load_change_monitor.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
+#include "vmass/core/pair_term_sensitivity.hpp"
 #include "vmass/core/rls_estimator.hpp"
-#include "vmass/core/rotating_mass_sensitivity.hpp"
 #include "vmass/core/static_initializer.hpp"
 #include "vmass/core/supervisor.hpp"
 #include "vmass/core/vehicle_params.hpp"
@@ -213,6 +213,8 @@ class Pipeline {
   void adopt_challenger();
   /// Offer the tick's extractions to the supervisor.
   void offer_pairs(const Sample& sample, StepResult* result);
+  /// A pair the belief is fitted on, into the interval's model-term sensitivities.
+  void add_to_sensitivities(const RegressionPair& pair);
   /// The load-change monitor's own extractions (its quicker differencing) to its challenger.
   void offer_monitor_pairs(const Sample& sample);
   /// Forget the extractors' signal histories; `reference_mass_kg` (> 0) becomes their gates'.
@@ -248,7 +250,9 @@ class Pipeline {
   RlsEstimator rls_;
   BayesEstimator bayes_;
   MassRegressor* regressor_;
-  RotatingMassSensitivity rotating_sensitivity_;  ///< of the belief's longitudinal pairs
+  /// Of the belief's longitudinal pairs: to the rotating masses and to the converter's map.
+  PairTermSensitivity rotating_sensitivity_{&RegressionPair::rotating_n};
+  PairTermSensitivity converter_sensitivity_{&RegressionPair::converter_n};
   RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
   double pair_information_;            ///< RegressionPair::information of every extracted pair
   double monitor_pair_information_;    ///< the same for the load monitor's pairs

@@ -37,8 +37,12 @@ struct RegressionPair {
   /// noise applies. With it, a regressor whose noise is s weighs the pair as weight * (s / it)^2.
   double noise_std_n = 0.0;
   /// Longitudinal: the rotating-mass term m_rot dv' already subtracted from y_n, N (0 for the
-  /// lateral block). An error in m_rot biases the mass through it (RotatingMassSensitivity).
+  /// lateral block). An error in m_rot biases the mass through it (PairTermSensitivity).
   double rotating_n = 0.0;
+  /// Longitudinal: the part of y_n an unlocked converter's multiplication makes, T (TR - 1) i
+  /// eta / r differenced, N (0 while locked). An error in the converter's map biases the mass
+  /// through it, as rotating_n's does.
+  double converter_n = 0.0;
   /// Longitudinal: the gear (or derived-ratio plateau) that term's rotating mass is taken for,
   /// 0 none, and that mass as configured, kg: what a study of the rotating masses per gear reads.
   int gear = 0;

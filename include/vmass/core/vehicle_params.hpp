@@ -71,6 +71,20 @@ struct VehicleParams {
   /// manual, automated manual or double clutch). A converter at its coupling point holds the
   /// ratio steady but off the gear's, so only ratios seen locked above any lock-up speed count.
   bool torque_converter = true;
+  /// The converter's map, for engine torque with a gear number (ConverterMap): the torque
+  /// ratio TR = stall - (stall - 1) SR / coupling below the coupling point, 1 above it, of the
+  /// speed ratio SR = turbine speed / engine speed. With it an unlocked converter's ticks are
+  /// used (a truck's automatic pulls away and drives its first gears unlocked); stall 0: the
+  /// map is unknown and they are not clean, as any slipping driveline's.
+  double torque_converter_stall_torque_ratio = 0.0;
+  double torque_converter_coupling_speed_ratio = 0.0;
+  /// Bound of the map's relative error in TR - 1 (a maker's curve against the converter in the
+  /// car); what it moves the mass by is in the interval (PairTermSensitivity).
+  double torque_converter_map_accuracy_fraction = 0.25;
+  /// Share of the engine's rotating mass still turning with the wheels while the converter is
+  /// unlocked (turbine and gearbox input): m_rot = m_rot(0) + share (m_rot(gear) - m_rot(0)).
+  /// Not on datasheets; rotating_mass_accuracy_fraction carries its error.
+  double torque_converter_turbine_inertia_share = 0.2;
   /// With derive_overall_ratio: the engine's inertia (crank, flywheel, converter), kg m^2; its
   /// share of the rotating mass is eta J i^2 / r^2 at the derived ratio. 0: unknown (only
   /// rotating_mass_kg, the wheels', is counted).
@@ -88,6 +102,8 @@ struct VehicleParams {
   double overall_ratio(int gear) const;
   /// Wheel torque from engine torque in a forward gear (see above); NaN when unknown.
   double wheel_torque_from_engine_nm(double engine_torque_nm, int gear) const;
+  /// The converter's map is configured (torque_converter_stall_torque_ratio above 1).
+  bool knows_converter_map() const { return torque_converter_stall_torque_ratio > 1.0; }
   std::string validate() const;
 };
 
