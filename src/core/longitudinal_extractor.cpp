@@ -95,7 +95,8 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
           std::lround(params.converter_shift_settle_s * differencing.tick_rate_hz)),
       derive_ratio_(vehicle.derive_overall_ratio),
       ratio_tracker_(vehicle, RatioTrackerParams{}, differencing.tick_rate_hz),
-      converter_(vehicle) {}
+      converter_(vehicle),
+      speed_scale_(SpeedSignalScaleParams{}, vehicle.torque_converter) {}
 
 void LongitudinalExtractor::reset() {
   restart_stretch();
@@ -141,15 +142,18 @@ double LongitudinalExtractor::wheel_torque_nm(const Sample& s) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-ConverterReading LongitudinalExtractor::coupling(const Sample& s) const {
+ConverterReading LongitudinalExtractor::coupling(const Sample& s) {
   ConverterReading locked;
   locked.coupling = DrivelineCoupling::kLocked;
   if (s.has(Input::kWheelTorque) || !s.has(Input::kEngineSpeed) || !s.has(Input::kGear)) {
     return locked;  // nothing to check it by (a wheel torque holds the converter already)
   }
-  const double turbine_radps =
+  const double through_gear_radps =
       std::abs(s.speed_mps) / vehicle_.wheel_radius_m * vehicle_.overall_ratio(s.gear);
-  return converter_.read(s.engine_speed_radps, turbine_radps);
+  if (s.gear > 0 && s.gear == previous_gear_) {
+    speed_scale_.observe(s.engine_speed_radps, through_gear_radps, s.speed_mps);
+  }
+  return converter_.read(s.engine_speed_radps, through_gear_radps * speed_scale_.scale());
 }
 
 // Only an automatic read through its map: a wheel torque or a clutch gearbox's engine report

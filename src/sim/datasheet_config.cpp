@@ -69,6 +69,7 @@ VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k)
     p.gear_ratios = v.powertrain.gear_ratios;
     p.final_drive_ratio = v.powertrain.final_drive_ratio;
     p.driveline_efficiency = v.powertrain.efficiency;
+    p.torque_converter = v.powertrain.has_torque_converter();  // the gearbox's kind is known
     if (v.powertrain.has_torque_converter()) converter_map(v.powertrain, errors, &p);
   }
   if (d.sensors.torque == TorqueSignal::kEngineTorque && !d.sensors.gear_index) {

@@ -50,6 +50,7 @@
 #include "vmass/core/low_pass_filter.hpp"
 #include "vmass/core/overall_ratio_tracker.hpp"
 #include "vmass/core/sample.hpp"
+#include "vmass/core/speed_signal_scale.hpp"
 #include "vmass/core/vehicle_params.hpp"
 
 namespace vmass {
@@ -155,7 +156,9 @@ class LongitudinalExtractor {
   double wheel_torque_nm(const Sample& s) const;
   /// How the engine's torque reaches the wheels: locked, through the converter's map, or
   /// slipping (the engine faster or slower than the wheels through the gear, unusable).
-  ConverterReading coupling(const Sample& s) const;
+  /// The engine is read against the speed through the gear times the speed signal's learnt
+  /// scale (SpeedSignalScale), which this also updates.
+  ConverterReading coupling(const Sample& s);
   /// An automatic's gear change is still in the filtered force (converter_shift_settle_s).
   bool hidden_shift_in_window() const;
   /// The derived ratio (derive_overall_ratio) is locked on the previous tick's confirmed plateau.
@@ -227,6 +230,7 @@ class LongitudinalExtractor {
   bool derive_ratio_;
   OverallRatioTracker ratio_tracker_;
   ConverterMap converter_;
+  SpeedSignalScale speed_scale_;
 };
 
 }  // namespace vmass

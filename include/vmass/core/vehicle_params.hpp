@@ -67,9 +67,10 @@ struct VehicleParams {
   /// or the clutch closed (OverallRatioTracker). The block then needs engine_torque and
   /// engine_speed, not the gear; gear_ratios and final_drive_ratio are not used.
   bool derive_overall_ratio = false;
-  /// With derive_overall_ratio: the gearbox has a torque converter (an automatic; false for a
-  /// manual, automated manual or double clutch). A converter at its coupling point holds the
-  /// ratio steady but off the gear's, so only ratios seen locked above any lock-up speed count.
+  /// The gearbox has a torque converter (an automatic; false for a manual, automated manual or
+  /// double clutch). A converter at its coupling point holds the ratio steady but off the
+  /// gear's, so only ratios seen above any lock-up speed count as locked: the derived ratio's
+  /// plateaus, and the speed signal's scale against the engine (SpeedSignalScale).
   bool torque_converter = true;
   /// The converter's map, for engine torque with a gear number (ConverterMap): the torque
   /// ratio TR = stall - (stall - 1) SR / coupling below the coupling point, 1 above it, of the
