@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "extracted_pairs.hpp"
 #include "synthetic_drive.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
 #include "vmass/core/pipeline.hpp"
@@ -49,26 +50,8 @@ std::vector<Sample> through_unlocked_converter(std::vector<Sample> samples, cons
   return samples;
 }
 
-std::vector<RegressionPair> longitudinal_pairs(const std::vector<Sample>& samples,
-                                               const VehicleParams& v) {
-  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
-  std::vector<RegressionPair> pairs;
-  for (const Sample& s : samples) {
-    if (const Extraction e = ex.step(s); e.has_pair()) pairs.push_back(e.pair);
-    Extraction released;
-    while (ex.pop_released(&released)) pairs.push_back(released.pair);
-  }
-  return pairs;
-}
-
-double least_squares_mass(const std::vector<RegressionPair>& pairs) {
-  double saa = 0.0, say = 0.0;
-  for (const RegressionPair& p : pairs) {
-    saa += p.delta_accel_mps2 * p.delta_accel_mps2;
-    say += p.delta_accel_mps2 * p.y_n;
-  }
-  return say / saa;
-}
+using testing::least_squares_mass;
+using testing::longitudinal_pairs;
 
 TEST(ConverterMap, MultipliesBelowTheCouplingPointOnly) {
   const ConverterMap map(automatic_vehicle());

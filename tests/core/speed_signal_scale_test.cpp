@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "extracted_pairs.hpp"
 #include "synthetic_drive.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
 
@@ -64,26 +65,6 @@ std::vector<Sample> with_display_speed(std::vector<Sample> samples, const Vehicl
   return samples;
 }
 
-std::size_t pair_count(const std::vector<Sample>& samples, const VehicleParams& v,
-                       double* mass_kg) {
-  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
-  std::size_t n = 0;
-  double saa = 0.0, say = 0.0;
-  auto add = [&](const Extraction& e) {
-    if (!e.has_pair()) return;
-    ++n;
-    saa += e.pair.delta_accel_mps2 * e.pair.delta_accel_mps2;
-    say += e.pair.delta_accel_mps2 * e.pair.y_n;
-  };
-  for (const Sample& s : samples) {
-    add(ex.step(s));
-    Extraction released;
-    while (ex.pop_released(&released)) add(released);
-  }
-  *mass_kg = saa > 0.0 ? say / saa : 0.0;
-  return n;
-}
-
 TEST(SpeedSignalScale, ADisplaySpeedNoLongerLooksLikeASlippingClutch) {
   const VehicleParams v = clutch_vehicle();
   testing::LongitudinalDrive drive;
@@ -91,14 +72,14 @@ TEST(SpeedSignalScale, ADisplaySpeedNoLongerLooksLikeASlippingClutch) {
   // 8 % high: outside the 5 % slip tolerance on every tick.
   const auto bus =
       with_display_speed(testing::longitudinal_samples(drive, v, 0.0, 120.0, 8.0, 0.01), v, 0.08);
-  double mass_kg = 0.0;
-  EXPECT_GT(pair_count(bus, v, &mass_kg), 1000u);
-  EXPECT_NEAR(mass_kg, drive.mass_kg, 0.02 * drive.mass_kg);
+  const auto pairs = testing::longitudinal_pairs(bus, v);
+  EXPECT_GT(pairs.size(), 1000u);
+  EXPECT_NEAR(testing::least_squares_mass(pairs), drive.mass_kg, 0.02 * drive.mass_kg);
   // The same bus of an automatic below its lock-up speeds: nothing is learnt, and the ticks stay
   // slipping (the converter may be at its coupling point).
   VehicleParams automatic = v;
   automatic.torque_converter = true;
-  EXPECT_EQ(pair_count(bus, automatic, &mass_kg), 0u);
+  EXPECT_TRUE(testing::longitudinal_pairs(bus, automatic).empty());
 }
 
 }  // namespace
