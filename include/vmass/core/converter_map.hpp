@@ -15,7 +15,7 @@
 //
 // A tick is read through the map only while the engine turns faster than the turbine (driving)
 // by more than the locked tolerance; an engine slower than the gear (overrun through the
-// converter) or a speed ratio below min_speed_ratio (near stall, where the curve is least known)
+// converter) or a speed ratio below kMinSpeedRatio (near stall, where the curve is least known)
 // is a slipping driveline, not used.
 //
 // Pure; thread-safe (no state).
