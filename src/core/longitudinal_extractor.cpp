@@ -227,14 +227,11 @@ LongitudinalExtractor::Record LongitudinalExtractor::filtered_record(const Sampl
   previous_speed_ = speed;
   has_previous_speed_ = true;
   const double ay = s.has(Input::kAccelY) && std::isfinite(s.accel_y_mps2) ? s.accel_y_mps2 : 0.0;
-  return Record{s.time_us,
-                accel_x_filter_.step(s.accel_x_mps2),
-                wheel_accel,
-                accel_y_filter_.step(ay),
-                force_filter_.step(in.force_n),
-                converter_filter_.step(in.converter_force_n),
-                gear_identity(s),
-                in.converter_multiplying};
+  return Record{s.time_us, accel_x_filter_.step(s.accel_x_mps2), wheel_accel,
+                accel_y_filter_.step(ay), force_filter_.step(in.force_n),
+                // Zero without a map: no filter to run on every tick.
+                vehicle_.knows_converter_map() ? converter_filter_.step(in.converter_force_n) : 0.0,
+                gear_identity(s), in.converter_multiplying};
 }
 
 void LongitudinalExtractor::update_noise(double residual_n) {

@@ -28,13 +28,7 @@ VehicleParams engine_torque_vehicle() {
 std::vector<Sample> as_engine_torque_bus(std::vector<Sample> samples, const VehicleParams& v,
                                          double slip) {
   for (Sample& s : samples) {
-    const double wheel_nm = s.wheel_torque_nm;
-    const double ratio = kGearRatio * kFinalDrive;
-    const double efficiency = wheel_nm >= 0.0 ? kEfficiency : 1.0 / kEfficiency;
-    s.valid &= ~input_bit(Input::kWheelTorque);
-    s.set(Input::kEngineTorque, wheel_nm / (ratio * efficiency));
-    s.set(Input::kGear, 2.0);
-    s.set(Input::kEngineSpeed, s.speed_mps / v.wheel_radius_m * ratio * (1.0 + slip));
+    testing::report_engine_torque(&s, v, 2, kGearRatio * kFinalDrive, kEfficiency, 1.0, 1.0 + slip);
   }
   return samples;
 }

@@ -38,14 +38,8 @@ std::vector<Sample> through_unlocked_converter(std::vector<Sample> samples, cons
                                                double true_stall) {
   for (Sample& s : samples) {
     const double speed_ratio = 0.625 + 0.175 * std::sin(0.23 * to_seconds(s.time_us));
-    const double torque_ratio = true_torque_ratio(speed_ratio, true_stall);
-    const double ratio = kGearRatio * kFinalDrive;
-    const double wheel_nm = s.wheel_torque_nm;
-    const double efficiency = wheel_nm >= 0.0 ? kEfficiency : 1.0 / kEfficiency;
-    s.valid &= ~input_bit(Input::kWheelTorque);
-    s.set(Input::kEngineTorque, wheel_nm / (torque_ratio * ratio * efficiency));
-    s.set(Input::kGear, 2.0);
-    s.set(Input::kEngineSpeed, s.speed_mps / v.wheel_radius_m * ratio / speed_ratio);
+    testing::report_engine_torque(&s, v, 2, kGearRatio * kFinalDrive, kEfficiency,
+                                  true_torque_ratio(speed_ratio, true_stall), 1.0 / speed_ratio);
   }
   return samples;
 }

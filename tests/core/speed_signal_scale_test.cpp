@@ -53,13 +53,7 @@ VehicleParams clutch_vehicle() {
 std::vector<Sample> with_display_speed(std::vector<Sample> samples, const VehicleParams& v,
                                        double overread) {
   for (Sample& s : samples) {
-    const double ratio = kGearRatio * kFinalDrive;
-    const double wheel_nm = s.wheel_torque_nm;
-    const double efficiency = wheel_nm >= 0.0 ? kEfficiency : 1.0 / kEfficiency;
-    s.valid &= ~input_bit(Input::kWheelTorque);
-    s.set(Input::kEngineTorque, wheel_nm / (ratio * efficiency));
-    s.set(Input::kGear, 2.0);
-    s.set(Input::kEngineSpeed, s.speed_mps / v.wheel_radius_m * ratio);
+    testing::report_engine_torque(&s, v, 2, kGearRatio * kFinalDrive, kEfficiency);
     s.speed_mps *= 1.0 + overread;
   }
   return samples;

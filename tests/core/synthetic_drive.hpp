@@ -38,6 +38,22 @@ inline SuspensionParams test_suspension() {
   return s;
 }
 
+/// The sample as a bus without wheel torque reports it, in `gear`: the engine torque behind its
+/// wheel torque through the overall ratio, the driveline efficiency and a converter's torque
+/// ratio, and the engine speed the wheels give through the ratio times engine_speed_factor (a
+/// slipping clutch or converter turns the engine faster).
+inline void report_engine_torque(Sample* s, const VehicleParams& v, int gear, double overall_ratio,
+                                 double efficiency, double torque_ratio = 1.0,
+                                 double engine_speed_factor = 1.0) {
+  const double wheel_nm = s->wheel_torque_nm;
+  const double losses = wheel_nm >= 0.0 ? efficiency : 1.0 / efficiency;
+  s->valid &= ~input_bit(Input::kWheelTorque);
+  s->set(Input::kEngineTorque, wheel_nm / (torque_ratio * overall_ratio * losses));
+  s->set(Input::kGear, static_cast<double>(gear));
+  s->set(Input::kEngineSpeed,
+         s->speed_mps / v.wheel_radius_m * overall_ratio * engine_speed_factor);
+}
+
 inline double deflection_for(double mass_kg, const VehicleParams& v, const SuspensionParams& s) {
   return s.empty_deflection_m + (mass_kg - v.empty_mass_kg) * v.cg_to_front_axle_m *
                                     v.gravity_mps2 / (2.0 * v.wheelbase_m * s.stiffness_n_per_m);

@@ -42,7 +42,12 @@ class ConverterMap {
  public:
   static constexpr double kMinSpeedRatio = 0.3;
 
-  explicit ConverterMap(const VehicleParams& vehicle) : vehicle_(vehicle) {}
+  explicit ConverterMap(const VehicleParams& vehicle)
+      : known_(vehicle.knows_converter_map()),
+        stall_(vehicle.torque_converter_stall_torque_ratio),
+        coupling_(vehicle.torque_converter_coupling_speed_ratio),
+        locked_slip_(vehicle.max_driveline_slip_fraction),
+        turbine_share_(vehicle.torque_converter_turbine_inertia_share) {}
 
   /// The coupling for the engine speed and the turbine speed the gear implies (both rad/s).
   ConverterReading read(double engine_speed_radps, double turbine_speed_radps) const;
@@ -50,11 +55,15 @@ class ConverterMap {
   double torque_ratio(double speed_ratio) const;
   /// m_rot below the coupling point, from the locked gear's m_rot and the wheels' alone (kg).
   double unlocked_rotating_mass_kg(double gear_kg, double wheels_kg) const {
-    return wheels_kg + vehicle_.torque_converter_turbine_inertia_share * (gear_kg - wheels_kg);
+    return wheels_kg + turbine_share_ * (gear_kg - wheels_kg);
   }
 
  private:
-  VehicleParams vehicle_;
+  bool known_;            ///< VehicleParams::knows_converter_map()
+  double stall_;          ///< TR at SR 0
+  double coupling_;       ///< SR_c
+  double locked_slip_;    ///< max_driveline_slip_fraction
+  double turbine_share_;  ///< torque_converter_turbine_inertia_share
 };
 
 }  // namespace vmass
