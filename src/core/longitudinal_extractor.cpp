@@ -85,7 +85,7 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
                1),
       pending_y_(pending_.size() * y_by_lag_.size(), 0.0),
       reference_mass_kg_(vehicle.empty_mass_kg),
-      residual_scale_n_(kInitialNoiseMps2 * vehicle.empty_mass_kg / kScalePerMeanAbs),
+      residual_scale_n_(initial_residual_scale_n()),
       noise_forget_(std::exp(-1.0 / (params.noise_memory_s * differencing.tick_rate_hz))),
       scale_forget_(std::exp(-1.0 / (params.scale_memory_s * differencing.tick_rate_hz))),
       pitch_scale_(1.0 + vehicle.pitch_gradient_deg_per_g * kRadPerDeg),
@@ -100,7 +100,23 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
 
 void LongitudinalExtractor::reset() {
   restart_stretch();
-  pending_count_ = 0;  // pairs of another load
+  forget_load();
+}
+
+void LongitudinalExtractor::forget_load() {
+  lag_.reset();
+  pending_count_ = 0;
+  pending_next_ = 0;
+  residual_scale_n_ = initial_residual_scale_n();
+}
+
+double LongitudinalExtractor::initial_residual_scale_n() const {
+  return kInitialNoiseMps2 * vehicle_.empty_mass_kg / kScalePerMeanAbs;
+}
+
+void LongitudinalExtractor::take_load(const LongitudinalExtractor& other) {
+  lag_ = other.lag_;
+  residual_scale_n_ = other.residual_scale_n_;
 }
 
 void LongitudinalExtractor::restart_stretch() {

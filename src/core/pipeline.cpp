@@ -113,10 +113,11 @@ Pipeline::Pipeline(const PipelineParams& params)
       learnt_(params.estimator.learning, std::sqrt(declared_scale_variance(params.vehicle))) {}
 
 void Pipeline::reset_extractors(double reference_mass_kg) {
-  longitudinal_.set_reference_mass(reference_mass_kg);
+  // The extractors see the force before it is divided by the learnt scale.
+  longitudinal_.set_reference_mass(reference_mass_kg * pair_scale_);
   longitudinal_.reset();
   lateral_.reset();
-  monitor_longitudinal_.set_reference_mass(reference_mass_kg);
+  monitor_longitudinal_.set_reference_mass(reference_mass_kg * pair_scale_);
   monitor_longitudinal_.reset();
   monitor_lateral_.reset();
 }
@@ -158,6 +159,22 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
       supervisor_.offer(Block::kLateral, lateral, *regressor_, &result->estimate_changed);
 }
 
+// The extractors measure their noise as the spread of y about M_ref da. About the prior's mass
+// (a truck's no-load-sensor prior is 24.7 t; its load 14-46 t) the spread is the prior's error
+// times da, the gates let only the largest da through and every pair is weighed as noisy; so
+// M_ref follows each extractor's own belief once that has pairs.
+void Pipeline::follow_beliefs() {
+  const RegressorState main = regressor_->state();
+  if (main.pairs_used > 0 && main.mass_kg > 0.0) {
+    longitudinal_.set_reference_mass(main.mass_kg * pair_scale_);
+  }
+  if (!load_monitor_.active()) return;
+  const RegressorState challenger = load_monitor_.challenger().state();
+  if (challenger.pairs_used > 0 && challenger.mass_kg > 0.0) {
+    monitor_longitudinal_.set_reference_mass(challenger.mass_kg * pair_scale_);
+  }
+}
+
 void Pipeline::add_to_sensitivities(const RegressionPair& pair) {
   rotating_sensitivity_.add(pair);
   converter_sensitivity_.add(pair);
@@ -168,6 +185,9 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
   // then, of a load that may have changed, must not pull the reference towards the challenger.
   if (load_monitor_.step(sample)) {
     belief_before_stop_ = regressor_->state();
+    // The challenger's pairs are of today's load: so is the lag they are read at.
+    monitor_longitudinal_.forget_load();
+    monitor_longitudinal_.set_reference_mass(load_monitor_.start_prior().mass_kg * pair_scale_);
     // A belief no drive has informed yet (the prior alone) holds nothing a challenger could
     // contradict: the drive after this stop simply refines it.
     if (belief_before_stop_.pairs_used == 0) load_monitor_.dismiss();
@@ -197,8 +217,9 @@ void Pipeline::adopt_challenger() {
   load_monitor_.dismiss();
   has_plausible_ = false;
   supervisor_.on_regressor_reset();
-  longitudinal_.set_reference_mass(regressor_->state().mass_kg);
-  monitor_longitudinal_.set_reference_mass(regressor_->state().mass_kg);
+  // The belief's lag evidence pools two loads; the monitor's is of the new load alone.
+  longitudinal_.take_load(monitor_longitudinal_);
+  longitudinal_.set_reference_mass(regressor_->state().mass_kg * pair_scale_);
   prior_ = load_monitor_.start_prior();
   prior_reason_ = StatusReason::kLoadChanged;
   estimate_.initial_mass_kg = prior_.mass_kg;
@@ -289,8 +310,11 @@ StepResult Pipeline::step(const Sample& sample) {
     offer_pairs(sample, &result);
     // A sensor reading the load sees every change at a standstill; without one the drive must.
     if (!params_.suspension.carries_load()) offer_monitor_pairs(sample);
+    follow_beliefs();
   }
-  if (load_monitor_.contradicts(belief_before_stop_)) {
+  // A challenger is adopted only with a mass vmass would publish.
+  if (load_monitor_.contradicts(belief_before_stop_) &&
+      plausible_mass_band(params_.vehicle).contains(load_monitor_.challenger().state().mass_kg)) {
     adopt_challenger();
     result.reinitialised = true;
     result.estimate_changed = true;

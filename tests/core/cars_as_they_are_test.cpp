@@ -210,6 +210,46 @@ TEST(NoLoadSensor, TheChallengerIsJudgedAgainstTheBeliefBeforeTheStop) {
   EXPECT_NEAR(pipeline.estimate().mass_kg, drive.after.mass_kg, 0.02 * drive.after.mass_kg);
 }
 
+// The bus reports the wheel torque `lag_s` before the hub sees it (as an ECU does).
+std::vector<Sample> torque_reported_early(std::vector<Sample> samples, double lag_s) {
+  const auto ticks = static_cast<std::size_t>(std::lround(lag_s / 0.01));
+  for (std::size_t i = 0; i + ticks < samples.size(); ++i) {
+    samples[i].wheel_torque_nm = samples[i + ticks].wheel_torque_nm;
+    samples[i].brake_pressure_pa = samples[i + ticks].brake_pressure_pa;
+  }
+  samples.resize(samples.size() - ticks);
+  return samples;
+}
+
+// Given an extractor that identified its driveline's lag on one load, after a load change it
+// forgets the lag and the noise (pooled over two loads the lag's fit misreads it: a truck's
+// launch at 33 t after 18 t read 0.003-0.012 s where either load alone gave 0.03) and holds its
+// pairs again until the new evidence identifies it; another extractor can take what it learnt.
+TEST(NoLoadSensor, ALoadChangeForgetsTheLagAndTheNoiseOfTheLoadBefore) {
+  const VehicleParams v = no_load_sensor_params().vehicle;
+  testing::LongitudinalDrive drive;
+  drive.rotating_mass_kg = v.rotating_mass_kg;
+  drive.force_noise_std_n = 60.0;
+  LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});
+  const LongitudinalExtractor fresh = ex;
+  for (const Sample& s : torque_reported_early(
+           testing::longitudinal_samples(drive, v, 0.0, 240.0, 15.0, 0.0), 0.06)) {
+    ex.step(s);
+  }
+  ASSERT_TRUE(ex.lag().identified());
+  EXPECT_NEAR(ex.lag().lag_s(), 0.06, 0.01);
+  ASSERT_NE(ex.force_noise_n(), fresh.force_noise_n());
+
+  LongitudinalExtractor taker = fresh;
+  taker.take_load(ex);
+  EXPECT_EQ(taker.lag().lag_s(), ex.lag().lag_s());
+  EXPECT_EQ(taker.force_noise_n(), ex.force_noise_n());
+
+  ex.forget_load();
+  EXPECT_FALSE(ex.lag().identified());
+  EXPECT_EQ(ex.force_noise_n(), fresh.force_noise_n());
+}
+
 // Given a car without a load sensor (so no reference deflection), its saved belief is restored
 // after a restart; switched off for minutes (a power cycle), the mass starts afresh as on a
 // first drive (the load may have changed): driving on 300 kg heavier, the new load is found.

@@ -107,11 +107,19 @@ class LongitudinalExtractor {
   /// provisional estimate only: the pair that enters the belief is the one pop_released() gives
   /// once the lag is identified.
   Extraction provisional(std::size_t i, double lag_s) const;
-  /// Forget the signal history and the held pairs (a restart: the load may have changed); the
-  /// identified lag and the noise are kept. A hole in the data (a tick step() cannot use)
-  /// restarts only the history: the held pairs were complete before it.
+  /// Forget the signal history and what forget_load() forgets (a restart: the load may have
+  /// changed). A hole in the data (a tick step() cannot use) restarts only the history: the
+  /// held pairs were complete before it.
   void reset();
-  /// The mass the noise scale and the gates use (the prior's; never the running estimate).
+  /// Start as on a fresh drive, keeping the signal history: forget the lag's evidence, the held
+  /// pairs and the noise scale, which are of the load before. Pooled over two loads they
+  /// mislead: a truck's launch at 33 t after a drive at 18 t read the lag 0.003-0.012 s (0.03 on
+  /// either load alone), and the noise, measured about the old mass, doubled.
+  void forget_load();
+  /// Take the lag's evidence and the noise scale of another extractor of the same block (the
+  /// load monitor's, learnt on the new load alone).
+  void take_load(const LongitudinalExtractor& other);
+  /// The mass the noise scale and the gates use: the prior's, then the belief's (Pipeline).
   void set_reference_mass(double mass_kg) { reference_mass_kg_ = mass_kg; }
 
   const LagEstimator& lag() const { return lag_; }
@@ -169,6 +177,7 @@ class LongitudinalExtractor {
   bool physically_possible(double force_n, const Sample& s) const;
   Record filtered_record(const Sample& s, const TickInputs& in);
   void update_noise(double residual_n);
+  double initial_residual_scale_n() const;
   /// The pair's acceleration change from the configured source.
   double delta_accel(const Record& now, const Record& then) const;
   void update_scale(const Record& now, const Record& then);

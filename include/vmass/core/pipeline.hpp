@@ -217,7 +217,7 @@ class Pipeline {
   void add_to_sensitivities(const RegressionPair& pair);
   /// The load-change monitor's own extractions (its quicker differencing) to its challenger.
   void offer_monitor_pairs(const Sample& sample);
-  /// Forget the extractors' signal histories; `reference_mass_kg` (> 0) becomes their gates'.
+  /// Forget what the extractors learnt of the load; `reference_mass_kg` (> 0) becomes their gates'.
   void reset_extractors(double reference_mass_kg);
   void refresh_estimate(const Sample& sample);
   /// The estimate's belief and status from the regressor (inputs as of the last step).
@@ -225,6 +225,8 @@ class Pipeline {
   /// The belief over every accepted pair: the Bayes posterior with its open batch (conjugacy
   /// makes it the posterior a batch boundary would give; the innovation gate keeps the batch's).
   RegressorState belief_state() const;
+  /// The extractors' reference mass (their noise and gates) follows their own beliefs.
+  void follow_beliefs();
   /// A copy of the Bayes estimator with its open batch closed into the posterior.
   BayesEstimator closed_bayes() const;
   /// While the driveline lag is unknown: the belief with the longitudinal pairs held for it, at
