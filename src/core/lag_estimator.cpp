@@ -38,6 +38,21 @@ void LagEstimator::reset() {
   lag_s_ = identified_ ? params_.fixed_lag_s : 0.0;
 }
 
+void LagEstimator::keep_as_prior() {
+  if (!identified_ || params_.fixed_lag_s >= 0.0) {
+    reset();
+    return;
+  }
+  // The sums hold at most memory_s of pairs (their forgetting).
+  const double held_s = std::min(evidence_s_, params_.memory_s);
+  if (held_s <= params_.min_evidence_s) return;
+  const double keep = params_.min_evidence_s / held_s;
+  for (double& s : s_ay_) s *= keep;
+  for (double& s : s_yy_) s *= keep;
+  s_aa_ *= keep;
+  evidence_s_ = params_.min_evidence_s;
+}
+
 void LagEstimator::add(double delta_accel_mps2, const double* y_by_lag) {
   if (max_lag_ == 0 || params_.fixed_lag_s >= 0.0) return;
   s_aa_ = forget_ * s_aa_ + delta_accel_mps2 * delta_accel_mps2;

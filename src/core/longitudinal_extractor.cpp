@@ -104,7 +104,7 @@ void LongitudinalExtractor::reset() {
 }
 
 void LongitudinalExtractor::forget_load() {
-  lag_.reset();
+  lag_.keep_as_prior();
   pending_count_ = 0;
   pending_next_ = 0;
   residual_scale_n_ = initial_residual_scale_n();

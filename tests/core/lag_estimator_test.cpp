@@ -104,5 +104,36 @@ TEST(LagEstimator, ResetForgetsTheEvidence) {
   EXPECT_FALSE(lag.identified());
 }
 
+// Given a lag identified over 120 s of one load's pairs, after another load's first 10 s of
+// pairs at another lag: kept as a prior, the old evidence lets the new lag through; kept whole
+// (forgetting alone), it holds the old one. Still identified throughout: no pair waits.
+TEST(LagEstimator, KeptAsAPriorTheOldLoadsLagSoonGivesWay) {
+  auto lag_after_new_load = [](bool keep_as_prior) {
+    LagEstimator lag(LagParams{}, kRateHz);
+    LaggedPairs before{0.0};
+    before.feed(&lag, 120.0);
+    EXPECT_NEAR(lag.lag_s(), 0.0, 0.005);
+    if (keep_as_prior) lag.keep_as_prior();
+    EXPECT_TRUE(lag.identified());
+    LaggedPairs after{6.0};
+    after.feed(&lag, 10.0);
+    return lag.lag_s();
+  };
+  EXPECT_NEAR(lag_after_new_load(true), 0.06, 0.01);
+  EXPECT_LT(lag_after_new_load(false), 0.03);
+}
+
+TEST(LagEstimator, WithoutAnIdentifiedLagKeepAsPriorForgetsAll) {
+  LagParams p;
+  p.min_evidence_s = 5.0;
+  LagEstimator lag(p, kRateHz);
+  LaggedPairs pairs{6.0};
+  pairs.feed(&lag, 4.0);
+  ASSERT_FALSE(lag.identified());
+  lag.keep_as_prior();
+  pairs.feed(&lag, 4.0);  // 4 s again: the first 4 s no longer count
+  EXPECT_FALSE(lag.identified());
+}
+
 }  // namespace
 }  // namespace vmass

@@ -53,6 +53,10 @@ class LagEstimator {
   double y_at(const double* y_by_lag, double lag_s) const;
   /// Forget the evidence (a new vehicle).
   void reset();
+  /// Another load: what the load before taught stays only as a prior worth min_evidence_s of
+  /// pairs, so that the lag stays identified and the new load's pairs soon overrule it (pooled
+  /// over two loads the fit misreads both). Without an identified lag, reset().
+  void keep_as_prior();
 
   /// The lag in use, s (0 until identified; fixed_lag_s when fixed).
   double lag_s() const { return lag_s_; }

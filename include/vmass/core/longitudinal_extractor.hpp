@@ -111,10 +111,11 @@ class LongitudinalExtractor {
   /// changed). A hole in the data (a tick step() cannot use) restarts only the history: the
   /// held pairs were complete before it.
   void reset();
-  /// Start as on a fresh drive, keeping the signal history: forget the lag's evidence, the held
-  /// pairs and the noise scale, which are of the load before. Pooled over two loads they
-  /// mislead: a truck's launch at 33 t after a drive at 18 t read the lag 0.003-0.012 s (0.03 on
-  /// either load alone), and the noise, measured about the old mass, doubled.
+  /// Another load, keeping the signal history: the lag's evidence of the load before stays only
+  /// as a prior (LagEstimator::keep_as_prior), the held pairs and the noise scale are forgotten.
+  /// Pooled over two loads they mislead: a truck's launch at 33 t after a drive at 18 t read the
+  /// lag 0.003-0.012 s (0.03 on either load alone), and the noise, measured about the old mass,
+  /// doubled.
   void forget_load();
   /// Take the lag's evidence and the noise scale of another extractor of the same block (the
   /// load monitor's, learnt on the new load alone).
