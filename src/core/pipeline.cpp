@@ -185,7 +185,8 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
   // then, of a load that may have changed, must not pull the reference towards the challenger.
   if (load_monitor_.step(sample)) {
     belief_before_stop_ = regressor_->state();
-    // The challenger's pairs are of today's load: so is the lag they are read at.
+    // The challenger's extractor starts as on a fresh drive, at the challenger's prior: its lag,
+    // noise and reference mass of the load before would misread today's.
     monitor_longitudinal_.forget_load();
     monitor_longitudinal_.set_reference_mass(load_monitor_.start_prior().mass_kg * pair_scale_);
     // A belief no drive has informed yet (the prior alone) holds nothing a challenger could
@@ -217,7 +218,7 @@ void Pipeline::adopt_challenger() {
   load_monitor_.dismiss();
   has_plausible_ = false;
   supervisor_.on_regressor_reset();
-  // The belief's lag evidence pools two loads; the monitor's is of the new load alone.
+  // The belief's lag and noise pool two loads; the monitor's are (mostly) of the new load.
   longitudinal_.take_load(monitor_longitudinal_);
   longitudinal_.set_reference_mass(regressor_->state().mass_kg * pair_scale_);
   prior_ = load_monitor_.start_prior();
