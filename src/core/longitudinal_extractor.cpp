@@ -357,6 +357,7 @@ LongitudinalExtractor::PairTerms LongitudinalExtractor::pair_terms(const Record&
                               vehicle_.torque_converter_map_accuracy_fraction * t.converter_n);
   t.gear = now.gear;
   t.rotating_mass_kg = rotating_mass_kg(now);
+  t.wheel_delta_accel_mps2 = now.wheel_accel_mps2 - then.wheel_accel_mps2;
   return t;
 }
 
@@ -387,6 +388,7 @@ Extraction LongitudinalExtractor::finish(const PairTerms& terms, double y, Extra
   out.pair.converter_n = terms.converter_n;
   out.pair.gear = terms.gear;
   out.pair.rotating_mass_kg = terms.rotating_mass_kg;
+  out.pair.wheel_delta_accel_mps2 = terms.wheel_delta_accel_mps2;
   return out;
 }
 

@@ -110,7 +110,23 @@ Pipeline::Pipeline(const PipelineParams& params)
           1.0 / params.estimator.effective_pair_correlation_ticks(params.estimator.differencing)),
       monitor_pair_information_(1.0 / params.estimator.effective_pair_correlation_ticks(
                                           params.estimator.monitor_differencing())),
-      learnt_(params.estimator.learning, std::sqrt(declared_scale_variance(params.vehicle))) {}
+      learnt_(params.estimator.learning, std::sqrt(declared_scale_variance(params.vehicle))),
+      gear_masses_(learnt_gear_masses_for(params.vehicle, params.estimator.learning,
+                                          params.estimator.model_error_std_fraction)),
+      applied_gear_masses_(gear_masses_) {}
+
+void Pipeline::to_belief_units(RegressionPair* pair) const {
+  divide_force(pair, pair_scale_);
+  if (GearPairSums::slot(*pair, applied_gear_masses_.gears()) < 0) return;
+  pair->y_n -=
+      applied_gear_masses_.applied_correction_kg(pair->gear) * pair->wheel_delta_accel_mps2;
+}
+
+double Pipeline::uncorrected_y_n(const RegressionPair& pair) const {
+  if (GearPairSums::slot(pair, applied_gear_masses_.gears()) < 0) return pair.y_n;
+  return pair.y_n +
+         applied_gear_masses_.applied_correction_kg(pair.gear) * pair.wheel_delta_accel_mps2;
+}
 
 void Pipeline::reset_extractors(double reference_mass_kg) {
   // The extractors see the force before it is divided by the learnt scale.
@@ -124,6 +140,7 @@ void Pipeline::reset_extractors(double reference_mass_kg) {
 
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   end_known_mass();
+  end_gear_evidence();
   pair_scale_ = learnt_.scale();
   load_unchecked_ = false;
   regressor_->reset(prior);
@@ -141,19 +158,22 @@ void Pipeline::offer_pairs(const Sample& sample, StepResult* result) {
   // Extractors run on every tick (their filters need continuity); the supervisor decides.
   Extraction longitudinal = longitudinal_.step(sample);
   Extraction lateral = lateral_.step(sample);
-  divide_force(&longitudinal.pair, pair_scale_);
+  to_belief_units(&longitudinal.pair);
   longitudinal.pair.information = pair_information_;
   lateral.pair.information = pair_information_;
   if (longitudinal.has_pair()) add_to_sensitivities(longitudinal.pair);
-  result->events[static_cast<int>(Block::kLongitudinal)] =
+  PairEvent& event = result->events[static_cast<int>(Block::kLongitudinal)];
+  event =
       supervisor_.offer(Block::kLongitudinal, longitudinal, *regressor_, &result->estimate_changed);
+  add_to_load_sums(longitudinal, event);
   // Pairs kept while the driveline lag was unknown, now at the identified lag.
   Extraction released;
   while (longitudinal_.pop_released(&released)) {
-    divide_force(&released.pair, pair_scale_);
+    to_belief_units(&released.pair);
     released.pair.information = pair_information_;
     if (released.has_pair()) add_to_sensitivities(released.pair);
-    supervisor_.offer_late(Block::kLongitudinal, released, *regressor_, &result->estimate_changed);
+    add_to_load_sums(released, supervisor_.offer_late(Block::kLongitudinal, released, *regressor_,
+                                                      &result->estimate_changed));
   }
   result->events[static_cast<int>(Block::kLateral)] =
       supervisor_.offer(Block::kLateral, lateral, *regressor_, &result->estimate_changed);
@@ -178,6 +198,35 @@ void Pipeline::follow_beliefs() {
 void Pipeline::add_to_sensitivities(const RegressionPair& pair) {
   rotating_sensitivity_.add(pair);
   converter_sensitivity_.add(pair);
+  interval_sums_.add(pair, uncorrected_y_n(pair), gear_masses_.gears());
+}
+
+void Pipeline::add_to_load_sums(const Extraction& extraction, const PairEvent& event) {
+  if (!extraction.has_pair() || event.verdict != PairVerdict::kAccepted) return;
+  load_sums_.add(extraction.pair, uncorrected_y_n(extraction.pair), gear_masses_.gears());
+}
+
+void Pipeline::end_gear_evidence() {
+  if (has_prior_) {
+    const RegressorState belief = belief_state();
+    if (belief.pairs_used > 0) gear_masses_.add_evidence(load_sums_, belief.mass_kg, belief.mu_n);
+  }
+  load_sums_ = GearPairSums{};
+  sums_before_stop_ = GearPairSums{};
+}
+
+LearntGearMasses Pipeline::gear_masses_if_ended() const {
+  if (!has_prior_) return gear_masses_;
+  const RegressorState belief = belief_state();
+  if (belief.pairs_used == 0) return gear_masses_;
+  LearntGearMasses out = gear_masses_;
+  ScaleObservation seen;
+  if (scale_observation(known_mass_, belief, params_.estimator.learning,
+                        params_.estimator.model_error_std_fraction, &seen)) {
+    out.add_reference(load_sums_);
+  }
+  out.add_evidence(load_sums_, belief.mass_kg, belief.mu_n);
+  return out;
 }
 
 void Pipeline::offer_monitor_pairs(const Sample& sample) {
@@ -185,6 +234,7 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
   // then, of a load that may have changed, must not pull the reference towards the challenger.
   if (load_monitor_.step(sample)) {
     belief_before_stop_ = regressor_->state();
+    sums_before_stop_ = load_sums_;
     // The challenger's extractor starts as on a fresh drive, at the challenger's prior: its lag,
     // noise and reference mass of the load before would misread today's.
     monitor_longitudinal_.forget_load();
@@ -195,14 +245,14 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
   }
   Extraction longitudinal = monitor_longitudinal_.step(sample);
   Extraction lateral = monitor_lateral_.step(sample);
-  divide_force(&longitudinal.pair, pair_scale_);
+  to_belief_units(&longitudinal.pair);
   Extraction released;
   for (Extraction* e : {&longitudinal, &lateral}) {
     e->pair.information = monitor_pair_information_;
     if (e->has_pair()) load_monitor_.offer(e->pair);
   }
   while (monitor_longitudinal_.pop_released(&released)) {
-    divide_force(&released.pair, pair_scale_);
+    to_belief_units(&released.pair);
     released.pair.information = monitor_pair_information_;
     if (released.has_pair()) load_monitor_.offer(released.pair);
   }
@@ -210,6 +260,13 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
 
 void Pipeline::adopt_challenger() {
   end_known_mass();  // the load changed: the known mass no longer holds
+  // The load before the stop is the belief's evidence of the gears; the new load's pairs go on.
+  if (belief_before_stop_.pairs_used > 0) {
+    gear_masses_.add_evidence(sums_before_stop_, belief_before_stop_.mass_kg,
+                              belief_before_stop_.mu_n);
+  }
+  load_sums_ = load_sums_.since(sums_before_stop_);
+  sums_before_stop_ = GearPairSums{};
   if (params_.estimator.type == RegressorType::kRls) {
     rls_ = load_monitor_.challenger_rls();
   } else {
@@ -276,6 +333,9 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   end_known_mass();
   learnt_.drift();
   pair_scale_ = learnt_.scale();
+  load_sums_ = GearPairSums{};  // the snapshot took their evidence (gear_masses_if_ended)
+  sums_before_stop_ = GearPairSums{};
+  applied_gear_masses_ = gear_masses_;
   has_prior_ = false;
   has_plausible_ = false;
   prior_reason_ = StatusReason::kWaitingForStandstill;
@@ -365,6 +425,7 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.blocks[1] = supervisor_.counters(Block::kLateral);
   s.time_us = estimate_.time_us;
   s.learnt = learnt_.state();
+  s.gear_masses = gear_masses_if_ended().state();
   s.known_mass = known_mass_;
   s.pair_scale = pair_scale_;
   return s;
@@ -388,8 +449,9 @@ bool Pipeline::fits(const PipelineSnapshot& s) const {
       return false;
     }
   }
-  if ((s.learnt_saved && !learnt_.implausible(s.learnt).empty()) || !(s.pair_scale > 0.0) ||
-      !std::isfinite(s.pair_scale) ||
+  if ((s.learnt_saved && !learnt_.implausible(s.learnt).empty()) ||
+      (s.gear_masses_saved && !gear_masses_.implausible(s.gear_masses).empty()) ||
+      !(s.pair_scale > 0.0) || !std::isfinite(s.pair_scale) ||
       (s.known_mass.active &&
        !(s.known_mass.mass_kg > 0.0 && s.known_mass.std_kg > 0.0 &&
          std::isfinite(s.known_mass.mass_kg) && std::isfinite(s.known_mass.std_kg) &&
@@ -430,6 +492,10 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
     bayes_ = trial;
   }
   if (s.learnt_saved) learnt_.restore(s.learnt);
+  if (s.gear_masses_saved) gear_masses_.restore(s.gear_masses);
+  applied_gear_masses_ = gear_masses_;
+  load_sums_ = GearPairSums{};  // the snapshot's gear masses hold their evidence
+  sums_before_stop_ = GearPairSums{};
   known_mass_ = s.known_mass;
   pair_scale_ = s.pair_scale;
   supervisor_.on_regressor_reset();
@@ -493,6 +559,8 @@ void Pipeline::end_known_mass() {
   if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
                         params_.estimator.model_error_std_fraction, &seen)) {
     learnt_.add_evidence(seen.log_scale, seen.variance);
+    // The scale now holds this drive's gear mix at the corrections it had.
+    gear_masses_.add_reference(load_sums_);
   }
   known_mass_.active = false;
 }
@@ -507,10 +575,17 @@ LearntScale Pipeline::learnt_scale_if_ended() const {
   return out;
 }
 
-void Pipeline::reset_learnt() { learnt_.reset(); }
+void Pipeline::reset_learnt() {
+  learnt_.reset();
+  gear_masses_.reset();
+  applied_gear_masses_ = gear_masses_;
+}
 
-bool Pipeline::restore_learnt(const LearntScaleState& learnt) {
-  if (!learnt_.restore(learnt)) return false;
+bool Pipeline::restore_learnt(const PipelineSnapshot& s) {
+  if (s.gear_masses_saved && !gear_masses_.implausible(s.gear_masses).empty()) return false;
+  if (!learnt_.restore(s.learnt)) return false;
+  if (s.gear_masses_saved) gear_masses_.restore(s.gear_masses);
+  applied_gear_masses_ = gear_masses_;
   learnt_.drift();  // a restart with its load unknown is a power cycle
   if (!has_prior_) pair_scale_ = learnt_.scale();
   return true;
@@ -696,11 +771,26 @@ double Pipeline::model_std_kg(double mass_kg) const {
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' and the converter map's errors move the mass by their share of it, in
   // kg (a truck's low gears, an automatic pulling away).
-  const double rotating_kg = kUniformStdPerBound * v.rotating_mass_accuracy_fraction *
-                             rotating_sensitivity_.sensitivity_kg();
+  const double rotating_kg = rotating_std_kg();
   const double converter_kg = kUniformStdPerBound * v.torque_converter_map_accuracy_fraction *
                               converter_sensitivity_.sensitivity_kg();
   return std::hypot(relative * std::abs(mass_kg), rotating_kg, converter_kg);
+}
+
+double Pipeline::rotating_std_kg() const {
+  const double datasheet_std =
+      kUniformStdPerBound * params_.vehicle.rotating_mass_accuracy_fraction;
+  if (!applied_gear_masses_.learnt()) {
+    return datasheet_std * rotating_sensitivity_.sensitivity_kg();
+  }
+  // The learnt gears' belief, and the datasheet's error of the pairs outside them (no gear, an
+  // unlocked converter).
+  const double unlearnt_kg =
+      interval_sums_.all_da_da > 0.0
+          ? datasheet_std * interval_sums_.unlearnt_da_term / interval_sums_.all_da_da
+          : 0.0;
+  return std::sqrt(applied_gear_masses_.mass_variance_kg2(interval_sums_) +
+                   unlearnt_kg * unlearnt_kg);
 }
 
 double Pipeline::published_half_width(const RegressorState& state) const {

@@ -1,5 +1,6 @@
 #include "vmass/scoring/replay_summary_text.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -40,10 +41,20 @@ void truth_rows(const ReplaySummary::Result& r, std::ostringstream& out) {
 
 void learnt_rows(const ReplaySummary::Result::Learnt& l, std::ostringstream& out) {
   if (l.known_masses > 0) out << "known masses         " << l.known_masses << " declared\n";
-  out << "learnt scale         " << fixed(l.scale, 4) << " (std "
-      << fixed(100.0 * l.relative_std, 2) << " %, from " << l.evidence << " drive"
-      << (l.evidence == 1 ? "" : "s") << " on a known mass"
-      << (l.changes > 0 ? ", " + std::to_string(l.changes) + " changes" : "") << ")\n";
+  if (l.evidence > 0 || l.known_masses > 0) {
+    out << "learnt scale         " << fixed(l.scale, 4) << " (std "
+        << fixed(100.0 * l.relative_std, 2) << " %, from " << l.evidence << " drive"
+        << (l.evidence == 1 ? "" : "s") << " on a known mass"
+        << (l.changes > 0 ? ", " + std::to_string(l.changes) + " changes" : "") << ")\n";
+  }
+  if (l.gear_drives == 0) return;
+  out << "learnt gear masses   from " << l.gear_drives << " drive"
+      << (l.gear_drives == 1 ? "" : "s") << ":";
+  for (std::size_t i = 0; i < l.gear_correction_kg.size(); ++i) {
+    out << (i == 0 ? " " : ", ") << "gear " << i + 1 << " " << std::lround(l.gear_correction_kg[i])
+        << " +- " << std::lround(l.gear_std_kg[i]) << " kg";
+  }
+  out << "\n";
 }
 
 // {"small_delta_force": 11160, "speed": 5400, ...}: why the block took no pair, by tick.
@@ -166,7 +177,15 @@ std::string replay_json(const ReplaySummary::Result& r, const std::string& estim
                    {"scale_std", json::fixed(r.learnt->relative_std, 6)},
                    {"evidence", r.learnt->evidence},
                    {"changes", r.learnt->changes},
-                   {"known_masses", r.learnt->known_masses}};
+                   {"known_masses", r.learnt->known_masses},
+                   {"gear_drives", r.learnt->gear_drives}};
+    json::Json gears = json::Json::array();
+    for (std::size_t i = 0; i < r.learnt->gear_correction_kg.size(); ++i) {
+      gears.push_back({{"gear", i + 1},
+                       {"correction_kg", json::fixed(r.learnt->gear_correction_kg[i], 3)},
+                       {"std_kg", json::fixed(r.learnt->gear_std_kg[i], 3)}});
+    }
+    j["learnt"]["gears"] = gears;
   }
   return json::dump(j);
 }

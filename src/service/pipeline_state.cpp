@@ -22,10 +22,10 @@ std::string unbelievable(const PipelineSnapshot& snapshot, TimeUs saved_time_us,
 
 /// The learnt section alone, when the mass section does not fit (StateLoad::learnt_kept).
 void restore_learnt_only(const StateLoad& state,
-                         const std::function<bool(const LearntScaleState&)>& resume_learnt,
+                         const std::function<bool(const PipelineSnapshot&)>& resume_learnt,
                          StateRestore* out) {
   if (!state.learnt_kept) return;
-  if (!resume_learnt(state.state.snapshot.learnt)) {
+  if (!resume_learnt(state.state.snapshot)) {
     out->message += "; what was learnt about the car is refused too";
     return;
   }
@@ -37,7 +37,7 @@ void restore_learnt_only(const StateLoad& state,
 /// restored, its estimate.
 StateRestore restore_checked(const std::string& path, const Pipeline& pipeline,
                              const std::function<bool(const PipelineSnapshot&)>& resume,
-                             const std::function<bool(const LearntScaleState&)>& resume_learnt) {
+                             const std::function<bool(const PipelineSnapshot&)>& resume_learnt) {
   StateRestore out;
   const StateLoad state = load_state_file(path, state_fingerprint(pipeline.params()),
                                           learnt_fingerprint(pipeline.params()));
@@ -78,13 +78,13 @@ StateRestore restore_checked(const std::string& path, const Pipeline& pipeline,
 StateRestore restore_pipeline_state(const std::string& path, Pipeline& pipeline) {
   return restore_checked(
       path, pipeline, [&](const PipelineSnapshot& s) { return pipeline.restore(s); },
-      [&](const LearntScaleState& s) { return pipeline.restore_learnt(s); });
+      [&](const PipelineSnapshot& s) { return pipeline.restore_learnt(s); });
 }
 
 StateRestore restore_pipeline_state(const std::string& path, runtime::TickStep& step) {
   return restore_checked(
       path, step.pipeline(), [&](const PipelineSnapshot& s) { return step.restore(s); },
-      [&](const LearntScaleState& s) { return step.restore_learnt(s); });
+      [&](const PipelineSnapshot& s) { return step.restore_learnt(s); });
 }
 
 StateSave save_pipeline_state(const std::string& path, const PipelineSnapshot& snapshot,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vmass/core/learnt_gear_masses.hpp"
 #include "vmass/core/learnt_scale.hpp"
 #include "vmass/core/plausible_band.hpp"
 #include "vmass/core/static_initializer.hpp"
@@ -129,6 +130,11 @@ void check_learnt(const PipelineSnapshot& s, const PipelineParams& params, Check
   if (s.learnt_saved) {
     const LearntScale prior(learning, std::sqrt(declared_scale_variance(params.vehicle)));
     if (std::string why = prior.implausible(s.learnt); !why.empty()) c.fail(why);
+  }
+  if (s.gear_masses_saved) {
+    const LearntGearMasses gears =
+        learnt_gear_masses_for(params.vehicle, learning, params.estimator.model_error_std_fraction);
+    if (std::string why = gears.implausible(s.gear_masses); !why.empty()) c.fail(why);
   }
   c.within("pair scale", s.pair_scale, std::exp(-learning.max_abs_log_scale),
            std::exp(learning.max_abs_log_scale), "");

@@ -18,7 +18,8 @@ namespace vmass::service {
 namespace {
 
 constexpr const char* kMagic = "vmass-state";
-constexpr int kVersion = 2;
+constexpr int kVersion = 3;
+constexpr int kVersionWithoutGears = 2;   ///< still read: the learnt scale, no gear masses
 constexpr int kVersionWithoutLearnt = 1;  ///< still read: nothing learnt in it
 
 std::uint64_t fnv1a(const char* data, std::size_t size, std::uint64_t h = 0xcbf29ce484222325ull) {
@@ -35,6 +36,17 @@ void put(std::string* out, const char* key, double v) {
   *out += key;
   *out += ' ';
   *out += buf;
+  *out += '\n';
+}
+
+/// `key v1 v2 ...` on one line.
+void put_list(std::string* out, const char* key, const double* v, int count) {
+  *out += key;
+  char buf[64];
+  for (int i = 0; i < count; ++i) {
+    std::snprintf(buf, sizeof buf, " %.17g", v[i]);
+    *out += buf;
+  }
   *out += '\n';
 }
 
@@ -155,6 +167,19 @@ void write_field(std::string* out, const StateField& field, PipelineSnapshot& s)
   }
 }
 
+/// Format version 3: the learnt gear masses (LearntGearMasses), the covariance row-major.
+void write_gear_masses(std::string* out, const GearMassesState& g) {
+  put_int(out, "learnt_gears", g.gears);
+  put_int(out, "learnt_gear_drives", g.drives);
+  if (g.gears == 0) return;  // a line needs a value
+  put_list(out, "learnt_gear_correction_kg", g.correction_kg.data(), g.gears);
+  put_list(out, "learnt_gear_reference_share", g.reference_share.data(), g.gears);
+  for (int i = 0; i < g.gears; ++i) {
+    const std::string key = "learnt_gear_covariance_kg2_" + std::to_string(i + 1);
+    put_list(out, key.c_str(), g.covariance_kg2.data() + i * kMaxLearntGears, g.gears);
+  }
+}
+
 }  // namespace
 
 std::uint64_t learnt_fingerprint(const PipelineParams& p) {
@@ -194,6 +219,7 @@ std::string format_state(const SavedState& state) {
   std::snprintf(hex, sizeof hex, "%016" PRIx64, state.learnt_fingerprint);
   out += std::string("learnt_fingerprint ") + hex + "\n";
   for (const StateField& field : kLearntFields) write_field(&out, field, s);
+  write_gear_masses(&out, s.gear_masses);
   std::snprintf(hex, sizeof hex, "%016" PRIx64, fnv1a(out.data(), out.size()));
   out += std::string("checksum ") + hex + "\n";
   return out;
@@ -255,6 +281,24 @@ struct ValueReader {
     }
     return "";
   }
+  /// `count` numbers on the key's line.
+  std::string reals(const std::string& key, int count, double* out) const {
+    std::string v;
+    if (std::string e = text(key, &v); !e.empty()) return e;
+    const char* at = v.data();
+    const char* end = v.data() + v.size();
+    for (int i = 0; i < count; ++i) {
+      while (at < end && *at == ' ') ++at;
+      const auto r = std::from_chars(at, end, out[i]);
+      if (r.ec != std::errc() || (r.ptr != end && *r.ptr != ' ')) {
+        return key + ": expected " + std::to_string(count) + " numbers: '" + v + "'";
+      }
+      at = r.ptr;
+    }
+    while (at < end && *at == ' ') ++at;
+    if (at != end) return key + ": more than " + std::to_string(count) + " numbers";
+    return "";
+  }
   std::string integer(const std::string& key, long long* out) const {
     std::string v;
     if (std::string e = text(key, &v); !e.empty()) return e;
@@ -302,6 +346,30 @@ std::string read_header_fields(const ValueReader& in, SavedState* out) {
   return "";
 }
 
+std::string read_gear_masses(const ValueReader& in, GearMassesState* g) {
+  long long n = 0;
+  if (std::string e = in.integer("learnt_gears", &n); !e.empty()) return e;
+  if (n < 0 || n > kMaxLearntGears) return "learnt_gears: out of range";
+  g->gears = static_cast<int>(n);
+  if (std::string e = in.integer("learnt_gear_drives", &n); !e.empty()) return e;
+  g->drives = static_cast<long>(n);
+  if (g->gears == 0) return "";
+  if (std::string e = in.reals("learnt_gear_correction_kg", g->gears, g->correction_kg.data());
+      !e.empty()) {
+    return e;
+  }
+  if (std::string e = in.reals("learnt_gear_reference_share", g->gears, g->reference_share.data());
+      !e.empty()) {
+    return e;
+  }
+  for (int i = 0; i < g->gears; ++i) {
+    const std::string key = "learnt_gear_covariance_kg2_" + std::to_string(i + 1);
+    double* row = g->covariance_kg2.data() + i * kMaxLearntGears;
+    if (std::string e = in.reals(key, g->gears, row); !e.empty()) return e;
+  }
+  return "";
+}
+
 std::string read_table_field(const ValueReader& in, const StateField& field, PipelineSnapshot* s) {
   long long n = 0;
   switch (field.kind) {
@@ -333,8 +401,10 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
     return fail(e);
   }
   const std::string version = values[kMagic];
-  if (version != std::to_string(kVersion) && version != std::to_string(kVersionWithoutLearnt)) {
-    return fail("not a vmass state file of format version " + std::to_string(kVersion) + " or " +
+  if (version != std::to_string(kVersion) && version != std::to_string(kVersionWithoutGears) &&
+      version != std::to_string(kVersionWithoutLearnt)) {
+    return fail("not a vmass state file of format version " + std::to_string(kVersion) + ", " +
+                std::to_string(kVersionWithoutGears) + " or " +
                 std::to_string(kVersionWithoutLearnt));
   }
   const ValueReader in{values};
@@ -350,7 +420,8 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
       return fail(e);
     }
   }
-  out.snapshot.learnt_saved = version == std::to_string(kVersion);
+  out.snapshot.learnt_saved = version != std::to_string(kVersionWithoutLearnt);
+  out.snapshot.gear_masses_saved = version == std::to_string(kVersion);
   if (out.snapshot.learnt_saved) {
     std::string hex;
     if (std::string e = in.text("learnt_fingerprint", &hex); !e.empty()) return fail(e);
@@ -361,6 +432,9 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
     for (const StateField& field : kLearntFields) {
       if (std::string e = read_table_field(in, field, &out.snapshot); !e.empty()) return fail(e);
     }
+  }
+  if (out.snapshot.gear_masses_saved) {
+    if (std::string e = read_gear_masses(in, &out.snapshot.gear_masses); !e.empty()) return fail(e);
   }
   *state = out;
   return true;
@@ -440,6 +514,7 @@ StateLoad load_state_file(const std::string& path, std::uint64_t expected_finger
   if (expected_learnt_fingerprint && saved.snapshot.learnt_saved &&
       saved.learnt_fingerprint != *expected_learnt_fingerprint) {
     saved.snapshot.learnt_saved = false;
+    saved.snapshot.gear_masses_saved = false;
     out.learnt_dropped = path +
                          ": what was learnt about the car was learnt with another rolling "
                          "radius, driveline or resistances; it is forgotten";

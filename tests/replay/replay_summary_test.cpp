@@ -163,6 +163,30 @@ TEST(ReplaySummary, JsonCarriesWhatTheTableShows) {
   EXPECT_EQ(j["coverage"], 1.0) << j;
 }
 
+// What the drive taught about each gear's rotating mass, in both the table and the JSON; the
+// learnt scale's row only when a known mass made it evidence.
+TEST(ReplaySummary, TheLearntGearMassesAreShownInTheTableAndTheJson) {
+  ReplaySummary summary(constant_truth(1700.0, 0.0, 10.0));
+  summary.add(refined(0, 1690.0, 100, 130));
+  ReplaySummary::Result::Learnt learnt;
+  learnt.gear_drives = 2;
+  learnt.gear_correction_kg = {-120.4, -9.6};
+  learnt.gear_std_kg = {30.2, 5.0};
+  summary.set_learnt(learnt);
+  const std::string table = table_of(summary, "bayes");
+  EXPECT_NE(table.find("learnt gear masses   from 2 drives: gear 1 -120 +- 30 kg, gear 2 -10 +- "
+                       "5 kg\n"),
+            std::string::npos)
+      << table;
+  EXPECT_EQ(table.find("learnt scale"), std::string::npos) << table;
+  const json::Json j = json_of(summary, "bayes");
+  EXPECT_EQ(j["learnt"]["gear_drives"], 2) << j;
+  ASSERT_EQ(j["learnt"]["gears"].size(), 2u) << j;
+  EXPECT_EQ(j["learnt"]["gears"][0]["gear"], 1) << j;
+  EXPECT_DOUBLE_EQ(j["learnt"]["gears"][0]["correction_kg"].get<double>(), -120.4) << j;
+  EXPECT_DOUBLE_EQ(j["learnt"]["gears"][1]["std_kg"].get<double>(), 5.0) << j;
+}
+
 TEST(ReplaySummary, JsonHasNoMassBeforeAnyEstimate) {
   ReplaySummary summary(std::nullopt);
   summary.add(no_prior_yet(0));

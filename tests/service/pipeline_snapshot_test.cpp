@@ -77,6 +77,12 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.known_mass.mass_kg, b.known_mass.mass_kg);
   EXPECT_EQ(a.known_mass.std_kg, b.known_mass.std_kg);
   EXPECT_EQ(a.known_mass.scale_used, b.known_mass.scale_used);
+  EXPECT_EQ(a.gear_masses_saved, b.gear_masses_saved);
+  EXPECT_EQ(a.gear_masses.gears, b.gear_masses.gears);
+  EXPECT_EQ(a.gear_masses.drives, b.gear_masses.drives);
+  EXPECT_EQ(a.gear_masses.correction_kg, b.gear_masses.correction_kg);
+  EXPECT_EQ(a.gear_masses.covariance_kg2, b.gear_masses.covariance_kg2);
+  EXPECT_EQ(a.gear_masses.reference_share, b.gear_masses.reference_share);
 }
 
 class PipelineSnapshotTest : public ::testing::TestWithParam<const char*> {};
@@ -366,6 +372,50 @@ TEST_F(StateFileTest, TheLearntSectionRoundTripsAndAVersionOneFileStillLoads) {
   ASSERT_TRUE(service::parse_state(v1, &back, &error)) << error;
   EXPECT_FALSE(back.snapshot.learnt_saved);
   EXPECT_EQ(back.snapshot.nig_mean[0], state_.snapshot.nig_mean[0]);
+}
+
+// Format version 3 adds the learnt gear masses; a version-2 file (before them) still loads its
+// learnt scale and leaves the pipeline's own gear masses alone.
+TEST_F(StateFileTest, TheGearSectionRoundTripsAndAVersionTwoFileStillLoads) {
+  SavedState geared = state_;
+  GearMassesState& g = geared.snapshot.gear_masses;
+  g.gears = 3;
+  g.drives = 4;
+  g.correction_kg = {-412.25, -80.5, 3.125};
+  g.reference_share = {0.25, 0.5, 0.125};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      g.covariance_kg2[std::size_t(i * kMaxLearntGears + j)] = i == j ? 900.0 + i : 0.1 * (i + j);
+  }
+  geared.snapshot.learnt = LearntScaleState{0.0312, 1.7e-4, 2, 0, 1, -0.05, 2e-4};
+  const std::string text = service::format_state(geared);
+  SavedState back;
+  std::string error;
+  ASSERT_TRUE(service::parse_state(text, &back, &error)) << error;
+  expect_same(back.snapshot, geared.snapshot);
+
+  // The same state as version 2 wrote it: no gear section, its own checksum.
+  std::string v2 = text.substr(0, text.find("learnt_gears "));
+  v2.replace(0, v2.find('\n'), "vmass-state 2");
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : v2) h = (h ^ c) * 0x100000001b3ull;
+  char hex[32];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  ASSERT_TRUE(service::parse_state(v2 + "checksum " + hex + "\n", &back, &error)) << error;
+  EXPECT_TRUE(back.snapshot.learnt_saved);
+  EXPECT_EQ(back.snapshot.learnt.log_scale, 0.0312);
+  EXPECT_FALSE(back.snapshot.gear_masses_saved);
+
+  // A gear line one number short names its key.
+  std::string short_row = text.substr(0, text.find("checksum "));
+  const std::size_t row = short_row.find("learnt_gear_correction_kg ");
+  short_row.erase(short_row.find(' ', row + 27),
+                  short_row.find('\n', row) - short_row.find(' ', row + 27));
+  h = 0xcbf29ce484222325ull;
+  for (unsigned char c : short_row) h = (h ^ c) * 0x100000001b3ull;
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  EXPECT_FALSE(service::parse_state(short_row + "checksum " + hex + "\n", &back, &error));
+  EXPECT_NE(error.find("learnt_gear_correction_kg"), std::string::npos) << error;
 }
 
 // Another rolling radius makes what was learnt wrong: it is dropped and the mass kept. Another

@@ -134,13 +134,15 @@ inline constexpr std::array<Field<BayesParams>, 4> kBayesFields{{
     {"credible_level", &BayesParams::credible_level},
 }};
 
-inline constexpr std::array<Field<LearningParams>, 6> kLearningFields{{
+inline constexpr std::array<Field<LearningParams>, 8> kLearningFields{{
     {"drift_std_per_drive", &LearningParams::drift_std_per_drive},
     {"outlier_sigma", &LearningParams::outlier_sigma},
     {"min_evidence_pairs", &LearningParams::min_evidence_pairs},
     {"max_evidence_std_fraction", &LearningParams::max_evidence_std_fraction},
     {"anchor_prior_std_fraction", &LearningParams::anchor_prior_std_fraction},
     {"max_abs_log_scale", &LearningParams::max_abs_log_scale},
+    {"learn_gear_masses", &LearningParams::learn_gear_masses},
+    {"min_gear_evidence_pairs", &LearningParams::min_gear_evidence_pairs},
 }};
 
 /// The section's layout: `v.fields(table, params)` for the keys of one level, `v.begin(key)` and

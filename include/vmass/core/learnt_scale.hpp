@@ -39,6 +39,11 @@ struct LearningParams {
   /// |log kappa| beyond this is not a scale error but a wrong config or a wrong declaration:
   /// such evidence, or a saved belief, is refused.
   double max_abs_log_scale = 0.25;
+  /// Learn each gear's effective rotating mass from how the gears read across drives
+  /// (LearntGearMasses).
+  bool learn_gear_masses = true;
+  /// ... a gear counts in a drive's evidence from this many of its pairs.
+  long min_gear_evidence_pairs = 20;
 
   std::string validate() const;
 };

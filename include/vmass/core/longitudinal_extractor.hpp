@@ -189,12 +189,13 @@ class LongitudinalExtractor {
   struct PairTerms {
     TimeUs time_us = 0;
     double delta_accel_mps2 = 0.0;
-    double noise_n = 0.0;           ///< the gates' noise scale
-    double pair_noise_n = 0.0;      ///< RegressionPair::noise_std_n
-    double rotating_n = 0.0;        ///< RegressionPair::rotating_n
-    double converter_n = 0.0;       ///< RegressionPair::converter_n
-    int gear = 0;                   ///< RegressionPair::gear
-    double rotating_mass_kg = 0.0;  ///< RegressionPair::rotating_mass_kg
+    double noise_n = 0.0;                 ///< the gates' noise scale
+    double pair_noise_n = 0.0;            ///< RegressionPair::noise_std_n
+    double rotating_n = 0.0;              ///< RegressionPair::rotating_n
+    double converter_n = 0.0;             ///< RegressionPair::converter_n
+    int gear = 0;                         ///< RegressionPair::gear
+    double rotating_mass_kg = 0.0;        ///< RegressionPair::rotating_mass_kg
+    double wheel_delta_accel_mps2 = 0.0;  ///< RegressionPair::wheel_delta_accel_mps2
   };
   PairTerms pair_terms(const Record& now, const Record& then, double delta_accel) const;
   /// The force and plausibility gates of a pair whose differenced force is y.

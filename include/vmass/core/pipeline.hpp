@@ -43,6 +43,7 @@
 #include "vmass/core/extraction.hpp"
 #include "vmass/core/known_mass.hpp"
 #include "vmass/core/lateral_extractor.hpp"
+#include "vmass/core/learnt_gear_masses.hpp"
 #include "vmass/core/learnt_scale.hpp"
 #include "vmass/core/load_change_monitor.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
@@ -141,6 +142,10 @@ struct PipelineSnapshot {
   // What is learnt about the car across drives, and the known mass of the current load.
   bool learnt_saved = true;  ///< false: a state from before them (restore keeps the pipeline's)
   LearntScaleState learnt;
+  /// false: a state from before the gears were learnt (restore keeps the pipeline's). Saved as
+  /// if the drive ended at the snapshot (its gears' evidence taken).
+  bool gear_masses_saved = true;
+  GearMassesState gear_masses;
   KnownMass known_mass;
   double pair_scale = 1.0;  ///< the scale the current belief's pairs were divided by
 };
@@ -186,10 +191,13 @@ class Pipeline {
   bool declare_known_mass(double mass_kg, double std_kg);
   /// Forget what was learnt about the car (back to the config's datasheet values).
   void reset_learnt();
-  /// Resume what was learnt about the car alone (a state whose mass section does not fit);
-  /// false and nothing changed when LearntScale::restore refuses it.
-  bool restore_learnt(const LearntScaleState& learnt);
+  /// Resume what was learnt about the car alone (the snapshot's learnt scale and gear masses,
+  /// when its mass section does not fit); false and nothing changed when either is refused.
+  bool restore_learnt(const PipelineSnapshot& snapshot);
   const LearntScale& learnt_scale() const { return learnt_; }
+  const LearntGearMasses& gear_masses() const { return gear_masses_; }
+  /// What the learnt gear masses would be if the drive ended now (its gears' evidence taken).
+  LearntGearMasses gear_masses_if_ended() const;
   /// What the learnt scale would be if the drive ended now (the known mass's evidence taken).
   LearntScale learnt_scale_if_ended() const;
 
@@ -199,6 +207,16 @@ class Pipeline {
   void restart(const MassPrior& prior, StatusReason reason);
   /// The known mass's evidence into the learnt scale (if it has any), and the known mass ends.
   void end_known_mass();
+  /// The current load's gears' evidence into the learnt gear masses; the load's sums restart.
+  void end_gear_evidence();
+  /// A longitudinal pair in the belief's units: divided by the learnt scale, its gear's learnt
+  /// rotating-mass correction subtracted.
+  void to_belief_units(RegressionPair* pair) const;
+  /// The pair's force before the learnt correction of its gear (in the belief's units).
+  double uncorrected_y_n(const RegressionPair& pair) const;
+  /// The rotating masses' std in the mass, kg: the learnt belief's once it rests on a drive,
+  /// else the datasheet's.
+  double rotating_std_kg() const;
   /// A declared known mass becomes the belief's start.
   void begin_known_mass();
   /// The known mass as the published estimate.
@@ -215,6 +233,8 @@ class Pipeline {
   void offer_pairs(const Sample& sample, StepResult* result);
   /// A pair the belief is fitted on, into the interval's model-term sensitivities.
   void add_to_sensitivities(const RegressionPair& pair);
+  /// A pair the belief accepted, into the current load's gear sums.
+  void add_to_load_sums(const Extraction& extraction, const PairEvent& event);
   /// The load-change monitor's own extractions (its quicker differencing) to its challenger.
   void offer_monitor_pairs(const Sample& sample);
   /// Forget what the extractors learnt of the load; `reference_mass_kg` (> 0) becomes their gates'.
@@ -255,6 +275,11 @@ class Pipeline {
   /// Of the belief's longitudinal pairs: to the rotating masses and to the converter's map.
   PairTermSensitivity rotating_sensitivity_{&RegressionPair::rotating_n};
   PairTermSensitivity converter_sensitivity_{&RegressionPair::converter_n};
+  /// The belief's pairs per gear: since its load began (the learnt gear masses' evidence), and
+  /// over every load (the interval's sensitivities to them, as rotating_sensitivity_).
+  GearPairSums load_sums_;
+  GearPairSums interval_sums_;
+  GearPairSums sums_before_stop_;      ///< load_sums_ when the load monitor's challenger started
   RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
   double pair_information_;            ///< RegressionPair::information of every extracted pair
   double monitor_pair_information_;    ///< the same for the load monitor's pairs
@@ -270,6 +295,11 @@ class Pipeline {
   TimeUs restored_time_us_ = 0;   ///< the snapshot's time
   bool load_unchecked_ = false;   ///< a power cycle after restore(), no prior since
   LearntScale learnt_;
+  LearntGearMasses gear_masses_;
+  /// The gear masses this drive's pairs are corrected with: what was learnt up to its start. A
+  /// drive's own evidence takes effect at the next power cycle, so that one stretch of one load
+  /// never corrects the next load of the same drive (a tractor's solo stretch its coupled one).
+  LearntGearMasses applied_gear_masses_;
   KnownMass known_mass_;
   KnownMass declared_;       ///< active: declared, taken at the next step
   double pair_scale_ = 1.0;  ///< kappa the belief's longitudinal pairs are divided by

@@ -47,6 +47,9 @@ struct RegressionPair {
   /// 0 none, and that mass as configured, kg: what a study of the rotating masses per gear reads.
   int gear = 0;
   double rotating_mass_kg = 0.0;
+  /// Longitudinal: the wheels' differenced acceleration dv', m/s^2, that the rotating term
+  /// multiplies (a learnt correction of the gear's rotating mass is subtracted times it).
+  double wheel_delta_accel_mps2 = 0.0;
 };
 
 /// The pair's weight relative to a regressor whose noise std is reference_noise_n (see

@@ -42,7 +42,9 @@ class TickStep {
   /// Resumes from a saved state (Pipeline::restore()); false: refused, nothing changed.
   bool restore(const PipelineSnapshot& snapshot) { return pipeline_.restore(snapshot); }
   /// Resumes what was learnt alone (Pipeline::restore_learnt()).
-  bool restore_learnt(const LearntScaleState& learnt) { return pipeline_.restore_learnt(learnt); }
+  bool restore_learnt(const PipelineSnapshot& snapshot) {
+    return pipeline_.restore_learnt(snapshot);
+  }
   /// The user's known mass of the current load (Pipeline::declare_known_mass()).
   bool declare_known_mass(double mass_kg, double std_kg) {
     return pipeline_.declare_known_mass(mass_kg, std_kg);

@@ -13,6 +13,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "vmass/core/estimate.hpp"
 #include "vmass/scoring/truth.hpp"
@@ -61,6 +62,11 @@ class ReplaySummary {
       long evidence = 0;
       long changes = 0;
       int known_masses = 0;  ///< declared during the run
+      /// The learnt gear masses (Pipeline::gear_masses_if_ended()): drives of evidence, and
+      /// per gear (index gear - 1) the correction of its rotating mass and its std, kg.
+      long gear_drives = 0;
+      std::vector<double> gear_correction_kg;
+      std::vector<double> gear_std_kg;
     };
     std::optional<Learnt> learnt;
   };
