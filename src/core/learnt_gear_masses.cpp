@@ -86,14 +86,15 @@ double LearntGearMasses::correction_kg(int gear) const {
   return state_.correction_kg[std::size_t(gear - 1)];
 }
 
+// The scale's mean is its evidence weighed by precision, the datasheet's mean (1) among them:
+// of a known-mass drive's level sum_g s_g delta_g it holds the share its evidence weighs.
 double LearntGearMasses::reference_offset_kg() const {
-  double weight = 0.0;
+  if (!(state_.reference_precision > 0.0)) return 0.0;
   double sum = 0.0;
   for (int i = 0; i < state_.gears; ++i) {
-    weight += state_.reference_share[std::size_t(i)];
     sum += state_.reference_share[std::size_t(i)] * state_.correction_kg[std::size_t(i)];
   }
-  return weight > 0.0 ? sum / weight : 0.0;
+  return sum / state_.reference_precision;
 }
 
 double LearntGearMasses::applied_correction_kg(int gear) const {
@@ -101,11 +102,19 @@ double LearntGearMasses::applied_correction_kg(int gear) const {
   return correction_kg(gear) - reference_offset_kg();
 }
 
-void LearntGearMasses::add_reference(const GearPairSums& sums) {
-  if (state_.gears == 0 || !(sums.all_da_da > 0.0)) return;
+void LearntGearMasses::add_reference(const GearPairSums& sums, double evidence_variance,
+                                     double scale_prior_variance) {
+  if (state_.gears == 0 || !(sums.all_da_da > 0.0) || !(evidence_variance > 0.0) ||
+      !(scale_prior_variance > 0.0)) {
+    return;
+  }
+  if (state_.reference_precision == 0.0) state_.reference_precision = 1.0 / scale_prior_variance;
+  state_.reference_precision += 1.0 / evidence_variance;
   for (int i = 0; i < state_.gears; ++i) {
     const double share = sums.da_wheel[std::size_t(i)] / sums.all_da_da;
-    if (share > 0.0 && std::isfinite(share)) state_.reference_share[std::size_t(i)] += share;
+    if (share > 0.0 && std::isfinite(share)) {
+      state_.reference_share[std::size_t(i)] += share / evidence_variance;
+    }
   }
 }
 
@@ -118,13 +127,17 @@ double LearntGearMasses::mass_variance_kg2(const GearPairSums& sums) const {
   if (state_.gears == 0 || !(sums.all_da_da > 0.0)) return 0.0;
   // dM / d delta_g = sum_g p da dv' / sum p da^2 (LS mass with delta_g dv' in every y of g),
   // less the share of the reference's mean that the applied corrections take off every gear.
-  Vector s(state_.gears);
-  Vector reference(state_.gears);
+  Vector s = Vector::Zero(state_.gears);
+  double total = 0.0;
   for (int i = 0; i < state_.gears; ++i) {
     s(i) = sums.da_wheel[std::size_t(i)] / sums.all_da_da;
-    reference(i) = state_.reference_share[std::size_t(i)];
+    total += s(i);
   }
-  if (reference.sum() > 0.0) s -= s.sum() * reference / reference.sum();
+  if (state_.reference_precision > 0.0) {
+    for (int i = 0; i < state_.gears; ++i) {
+      s(i) -= total * state_.reference_share[std::size_t(i)] / state_.reference_precision;
+    }
+  }
   return s.dot(covariance(state_) * s);
 }
 
@@ -181,6 +194,9 @@ std::string LearntGearMasses::implausible(const GearMassesState& s) const {
            std::to_string(state_.gears);
   }
   if (s.drives < 0) return "learnt gear masses' drive count out of range";
+  if (!std::isfinite(s.reference_precision) || s.reference_precision < 0.0) {
+    return "learnt gear masses' reference precision out of range";
+  }
   for (int i = 0; i < s.gears; ++i) {
     const double share = s.reference_share[std::size_t(i)];
     if (!std::isfinite(share) || share < 0.0) {

@@ -223,7 +223,7 @@ LearntGearMasses Pipeline::gear_masses_if_ended() const {
   ScaleObservation seen;
   if (scale_observation(known_mass_, belief, params_.estimator.learning,
                         params_.estimator.model_error_std_fraction, &seen)) {
-    out.add_reference(load_sums_);
+    out.add_reference(load_sums_, seen.variance, declared_scale_variance(params_.vehicle));
   }
   out.add_evidence(load_sums_, belief.mass_kg, belief.mu_n);
   return out;
@@ -560,7 +560,7 @@ void Pipeline::end_known_mass() {
                         params_.estimator.model_error_std_fraction, &seen)) {
     learnt_.add_evidence(seen.log_scale, seen.variance);
     // The scale now holds this drive's gear mix at the corrections it had.
-    gear_masses_.add_reference(load_sums_);
+    gear_masses_.add_reference(load_sums_, seen.variance, declared_scale_variance(params_.vehicle));
   }
   known_mass_.active = false;
 }

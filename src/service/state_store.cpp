@@ -171,6 +171,7 @@ void write_field(std::string* out, const StateField& field, PipelineSnapshot& s)
 void write_gear_masses(std::string* out, const GearMassesState& g) {
   put_int(out, "learnt_gears", g.gears);
   put_int(out, "learnt_gear_drives", g.drives);
+  put(out, "learnt_gear_reference_precision", g.reference_precision);
   if (g.gears == 0) return;  // a line needs a value
   put_list(out, "learnt_gear_correction_kg", g.correction_kg.data(), g.gears);
   put_list(out, "learnt_gear_reference_share", g.reference_share.data(), g.gears);
@@ -353,6 +354,10 @@ std::string read_gear_masses(const ValueReader& in, GearMassesState* g) {
   g->gears = static_cast<int>(n);
   if (std::string e = in.integer("learnt_gear_drives", &n); !e.empty()) return e;
   g->drives = static_cast<long>(n);
+  if (std::string e = in.real("learnt_gear_reference_precision", &g->reference_precision);
+      !e.empty()) {
+    return e;
+  }
   if (g->gears == 0) return "";
   if (std::string e = in.reals("learnt_gear_correction_kg", g->gears, g->correction_kg.data());
       !e.empty()) {

@@ -145,21 +145,28 @@ TEST(LearntGearMassesTest, TheCorrectionsAppliedAreRelativeToTheKnownMassDrivesG
   for (int gear = 1; gear <= 4; ++gear) {
     EXPECT_EQ(g.applied_correction_kg(gear), g.correction_kg(gear));  // no reference yet
   }
-  // The known-mass drive was an urban one in gears 1 and 2, in equal shares.
-  GearPairSums urban = drive_reading(20000.0, delta, {1, 2});
-  g.add_reference(urban);
-  const double offset = 0.5 * (g.correction_kg(1) + g.correction_kg(2));
+  // The known-mass drive was an urban one in gears 1 and 2, in equal shares. Its evidence of the
+  // scale was as good as the datasheet: the scale holds half of that mix's level.
+  const GearPairSums urban = drive_reading(20000.0, delta, {1, 2});
+  LearntGearMasses even = g;
+  even.add_reference(urban, 1e-4, 1e-4);
+  const double level = 0.5 * (g.correction_kg(1) + g.correction_kg(2));
   for (int gear = 1; gear <= 4; ++gear) {
-    EXPECT_NEAR(g.applied_correction_kg(gear), g.correction_kg(gear) - offset, 1e-9) << gear;
+    EXPECT_NEAR(even.applied_correction_kg(gear), g.correction_kg(gear) - 0.5 * level, 1e-9)
+        << gear;
   }
-  // The same mix nets to nothing: its level is the scale's.
-  EXPECT_NEAR(g.applied_correction_kg(1) + g.applied_correction_kg(2), 0.0, 1e-9);
+  // Evidence far better than the datasheet: the scale holds all of it, and the same mix nets
+  // to nothing.
+  g.add_reference(urban, 1e-10, 1e-2);
+  EXPECT_NEAR(g.applied_correction_kg(1) + g.applied_correction_kg(2), 0.0, 1e-3);
   // A drive in that mix rests on no correction at all: nothing of the belief's variance left.
-  EXPECT_NEAR(g.mass_variance_kg2(urban), 0.0, 1e-6);
+  EXPECT_NEAR(g.mass_variance_kg2(urban), 0.0, 1e-3);
   EXPECT_GT(g.mass_variance_kg2(drive_reading(20000.0, delta, {4})), 0.0);
+  EXPECT_EQ(g.implausible(g.state()), "");
   g.reset();
   EXPECT_EQ(g.applied_correction_kg(1), 0.0);
   EXPECT_EQ(g.state().reference_share[0], 0.0);
+  EXPECT_EQ(g.state().reference_precision, 0.0);
 }
 
 TEST(LearntGearMassesTest, NothingIsLearntWithoutPerGearMassesOrWhenSwitchedOff) {

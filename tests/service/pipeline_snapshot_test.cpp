@@ -83,6 +83,7 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.gear_masses.correction_kg, b.gear_masses.correction_kg);
   EXPECT_EQ(a.gear_masses.covariance_kg2, b.gear_masses.covariance_kg2);
   EXPECT_EQ(a.gear_masses.reference_share, b.gear_masses.reference_share);
+  EXPECT_EQ(a.gear_masses.reference_precision, b.gear_masses.reference_precision);
 }
 
 class PipelineSnapshotTest : public ::testing::TestWithParam<const char*> {};
@@ -383,6 +384,7 @@ TEST_F(StateFileTest, TheGearSectionRoundTripsAndAVersionTwoFileStillLoads) {
   g.drives = 4;
   g.correction_kg = {-412.25, -80.5, 3.125};
   g.reference_share = {0.25, 0.5, 0.125};
+  g.reference_precision = 3125.5;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j)
       g.covariance_kg2[std::size_t(i * kMaxLearntGears + j)] = i == j ? 900.0 + i : 0.1 * (i + j);

@@ -39,9 +39,13 @@ struct GearMassesState {
   std::array<double, kMaxLearntGears * kMaxLearntGears> covariance_kg2{};
   long drives = 0;  ///< drives (loads) whose evidence was taken
   /// The gear mix of the drives on a known mass: per gear, the sum over them of the mass's
-  /// sensitivity to the gear's correction (GearPairSums). Their mass taught the lumped scale
-  /// with the corrections of that time, so the corrections applied are relative to this mix.
+  /// sensitivity to the gear's correction (GearPairSums) times the precision of the scale's
+  /// evidence the drive gave. Their mass taught the lumped scale with the corrections of that
+  /// time: the scale holds their mix's level as much as their evidence weighs in it.
   std::array<double, kMaxLearntGears> reference_share{};
+  /// The scale's precision with that evidence: its datasheet precision plus the evidence's
+  /// (0 without a reference).
+  double reference_precision = 0.0;
 };
 
 class LearntGearMasses {
@@ -58,14 +62,16 @@ class LearntGearMasses {
   const GearMassesState& state() const { return state_; }
   /// The learnt delta of `gear` (1-based), kg; 0 for a gear not learnt.
   double correction_kg(int gear) const;
-  /// What the pipeline subtracts for `gear`: its delta less the mean delta of the known-mass
-  /// drives' gear mix (whose level the lumped scale already holds), kg.
+  /// What the pipeline subtracts for `gear`: its delta less the level of the known-mass drives'
+  /// gear mix that the lumped scale already holds (their mean delta, weighed as their evidence
+  /// weighs in the scale), kg.
   double applied_correction_kg(int gear) const;
   /// Its std, kg (0 for a gear not learnt).
   double correction_std_kg(int gear) const;
-  /// A drive on a known mass whose evidence the lumped scale took: its pairs' gear mix becomes
-  /// part of the reference.
-  void add_reference(const GearPairSums& sums);
+  /// A drive on a known mass whose evidence the lumped scale took, with that evidence's variance
+  /// and the scale's datasheet variance: its pairs' gear mix becomes part of the reference.
+  void add_reference(const GearPairSums& sums, double evidence_variance,
+                     double scale_prior_variance);
   /// The variance the belief in delta leaves in a mass fitted on `sums` with the applied
   /// corrections, kg^2.
   double mass_variance_kg2(const GearPairSums& sums) const;
@@ -85,7 +91,7 @@ class LearntGearMasses {
 
  private:
   double prior_variance_kg2(int i, int j) const;
-  /// The mean delta of the reference mix, kg (0 without one).
+  /// The level of delta the lumped scale holds, kg (0 without a reference).
   double reference_offset_kg() const;
 
   std::array<double, kMaxLearntGears> config_kg_{};
