@@ -137,11 +137,7 @@ ReplayOutcome replay_log(const Config& config, const std::string& log, const Rep
   // The end of the log: the open Bayes batch enters the final estimate (the columns keep one
   // row per tick), as with vmass-replay --log and at vmassd's stop.
   if (step.flush()) summary.finish(step.pipeline().estimate());
-  const LearntScale learnt = step.pipeline().learnt_scale_if_ended();
-  if (!known.empty() || learnt.learnt()) {
-    summary.set_learnt({learnt.scale(), learnt.relative_std(), learnt.state().evidence,
-                        learnt.state().changes, static_cast<int>(known.size())});
-  }
+  scoring::record_learnt(step.pipeline(), static_cast<int>(known.size()), &summary);
   out.summary_json =
       scoring::replay_json(summary.result(), std::string(step.pipeline().regressor().name()));
   save_state(o, step, run, &out);

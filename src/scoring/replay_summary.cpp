@@ -76,4 +76,22 @@ void ReplaySummary::time_within(Result* r) const {
   }
 }
 
+void record_learnt(const Pipeline& pipeline, int known_masses, ReplaySummary* summary) {
+  const LearntScale learnt = pipeline.learnt_scale_if_ended();
+  const LearntGearMasses gears = pipeline.gear_masses_if_ended();
+  if (known_masses == 0 && !learnt.learnt() && !gears.learnt()) return;
+  ReplaySummary::Result::Learnt l;
+  l.scale = learnt.scale();
+  l.relative_std = learnt.relative_std();
+  l.evidence = learnt.state().evidence;
+  l.changes = learnt.state().changes;
+  l.known_masses = known_masses;
+  l.gear_drives = gears.state().drives;
+  for (int g = 1; g <= gears.gears() && gears.learnt(); ++g) {
+    l.gear_correction_kg.push_back(gears.correction_kg(g));
+    l.gear_std_kg.push_back(gears.correction_std_kg(g));
+  }
+  summary->set_learnt(l);
+}
+
 }  // namespace vmass::scoring

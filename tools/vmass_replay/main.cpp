@@ -239,27 +239,6 @@ bool plot(const Options& o, const std::string& csv_path, const std::string& esti
   return rc == 0;
 }
 
-/// What the drive leaves learnt about the car, into the summary: when a known mass was
-/// declared or anything is learnt.
-void set_learnt(const vmass::Pipeline& pipeline, int known_masses,
-                vmass::scoring::ReplaySummary* summary) {
-  const vmass::LearntScale learnt = pipeline.learnt_scale_if_ended();
-  const vmass::LearntGearMasses gears = pipeline.gear_masses_if_ended();
-  if (known_masses == 0 && !learnt.learnt() && !gears.learnt()) return;
-  vmass::scoring::ReplaySummary::Result::Learnt l;
-  l.scale = learnt.scale();
-  l.relative_std = learnt.relative_std();
-  l.evidence = learnt.state().evidence;
-  l.changes = learnt.state().changes;
-  l.known_masses = known_masses;
-  l.gear_drives = gears.state().drives;
-  for (int g = 1; g <= gears.gears() && gears.learnt(); ++g) {
-    l.gear_correction_kg.push_back(gears.correction_kg(g));
-    l.gear_std_kg.push_back(gears.correction_std_kg(g));
-  }
-  summary->set_learnt(l);
-}
-
 /// One input (--log or --samples): the summary table (or JSON), the CSV and the plot.
 int replay_one_input(const Options& o, const vmass::Config& config,
                      const vmass::PipelineParams& params) {
@@ -308,7 +287,7 @@ int replay_one_input(const Options& o, const vmass::Config& config,
   // The end of the input: the open Bayes batch enters the final estimate (the CSV keeps one
   // row per tick; the summary reports the flushed estimate).
   if (step.flush()) summary.finish(step.pipeline().estimate());
-  set_learnt(step.pipeline(), static_cast<int>(known.size()), &summary);
+  vmass::scoring::record_learnt(step.pipeline(), static_cast<int>(known.size()), &summary);
   if (writer && !writer->close()) {
     std::cerr << "vmass-replay: " << csv_path << ": write failed\n";
     return kExitFailure;

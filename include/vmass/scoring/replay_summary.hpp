@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "vmass/core/estimate.hpp"
+#include "vmass/core/pipeline.hpp"
 #include "vmass/scoring/truth.hpp"
 #include "vmass/scoring/verdict_tally.hpp"
 #include "vmass/scoring/within_tracker.hpp"
@@ -92,5 +93,10 @@ class ReplaySummary {
   bool any_mass_ = false;
   TimeUs first_mass_us_ = 0;
 };
+
+/// What the drive leaves learnt about the car (Pipeline::learnt_scale_if_ended(),
+/// gear_masses_if_ended()) into `summary`, when a known mass was declared (`known_masses`) or
+/// anything is learnt: vmass-replay and the Python binding report the same.
+void record_learnt(const Pipeline& pipeline, int known_masses, ReplaySummary* summary);
 
 }  // namespace vmass::scoring
