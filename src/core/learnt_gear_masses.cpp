@@ -79,6 +79,7 @@ void LearntGearMasses::reset() {
       state_.covariance_kg2[cell(i, j)] = prior_variance_kg2(i, j);
     }
   }
+  refresh_offset();
 }
 
 double LearntGearMasses::correction_kg(int gear) const {
@@ -88,18 +89,19 @@ double LearntGearMasses::correction_kg(int gear) const {
 
 // The scale's mean is its evidence weighed by precision, the datasheet's mean (1) among them:
 // of a known-mass drive's level sum_g s_g delta_g it holds the share its evidence weighs.
-double LearntGearMasses::reference_offset_kg() const {
-  if (!(state_.reference_precision > 0.0)) return 0.0;
+void LearntGearMasses::refresh_offset() {
+  offset_kg_ = 0.0;
+  if (!(state_.reference_precision > 0.0)) return;
   double sum = 0.0;
   for (int i = 0; i < state_.gears; ++i) {
     sum += state_.reference_share[std::size_t(i)] * state_.correction_kg[std::size_t(i)];
   }
-  return sum / state_.reference_precision;
+  offset_kg_ = sum / state_.reference_precision;
 }
 
 double LearntGearMasses::applied_correction_kg(int gear) const {
   if (gear < 1 || gear > state_.gears) return 0.0;
-  return correction_kg(gear) - reference_offset_kg();
+  return correction_kg(gear) - offset_kg_;
 }
 
 void LearntGearMasses::add_reference(const GearPairSums& sums, double evidence_variance,
@@ -116,6 +118,7 @@ void LearntGearMasses::add_reference(const GearPairSums& sums, double evidence_v
       state_.reference_share[std::size_t(i)] += share / evidence_variance;
     }
   }
+  refresh_offset();
 }
 
 double LearntGearMasses::correction_std_kg(int gear) const {
@@ -185,6 +188,7 @@ bool LearntGearMasses::add_evidence(const GearPairSums& sums, double mass_kg, do
   ++next.drives;
   if (!implausible(next).empty()) return false;
   state_ = next;
+  refresh_offset();
   return true;
 }
 
@@ -238,6 +242,7 @@ LearntGearMasses learnt_gear_masses_for(const VehicleParams& vehicle,
 bool LearntGearMasses::restore(const GearMassesState& s) {
   if (!implausible(s).empty()) return false;
   state_ = s;
+  refresh_offset();
   return true;
 }
 

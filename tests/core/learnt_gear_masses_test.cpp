@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "learning_car.hpp"
 #include "synthetic_drive.hpp"
 #include "vmass/core/pipeline.hpp"
 
@@ -190,15 +191,8 @@ const std::vector<double> kCarConfigKg = {400.0, 200.0, 100.0, 50.0};
 const std::vector<double> kCarTrueKg = {220.0, 150.0, 92.0, 48.0};
 
 PipelineParams geared_car() {
-  PipelineParams p;
-  p.vehicle = testing::test_vehicle();
-  p.vehicle.max_mass_kg = 2200.0;
+  PipelineParams p = testing::learning_car();
   p.vehicle.rotating_mass_by_gear_kg = kCarConfigKg;
-  p.suspension.has_sensor = false;
-  p.estimator.type = RegressorType::kBayes;
-  p.estimator.bayes.noise_std_guess_n = 50.0;
-  p.estimator.bayes.batch_size = 50;
-  p.estimator.differencing.filter_cutoff_hz = 5.0;
   return p;
 }
 

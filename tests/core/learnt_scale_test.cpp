@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "learning_car.hpp"
 #include "synthetic_drive.hpp"
 #include "vmass/core/pipeline.hpp"
 
@@ -84,17 +85,7 @@ TEST(LearntScaleTest, RestoreRefusesAStateItCouldNotHold) {
 
 // The car's force signals read 5 % high (a datasheet torque scale and rolling radius): every
 // traction pair reads 1.05 M. No deflection sensor.
-PipelineParams scaled_car() {
-  PipelineParams p;
-  p.vehicle = testing::test_vehicle();
-  p.vehicle.max_mass_kg = 2200.0;
-  p.suspension.has_sensor = false;
-  p.estimator.type = RegressorType::kBayes;
-  p.estimator.bayes.noise_std_guess_n = 50.0;
-  p.estimator.bayes.batch_size = 50;
-  p.estimator.differencing.filter_cutoff_hz = 5.0;
-  return p;
-}
+PipelineParams scaled_car() { return testing::learning_car(); }
 
 std::vector<Sample> scaled_drive(double mass_kg, double t0_s, unsigned seed,
                                  const VehicleParams& v) {

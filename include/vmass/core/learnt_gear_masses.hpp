@@ -91,14 +91,16 @@ class LearntGearMasses {
 
  private:
   double prior_variance_kg2(int i, int j) const;
-  /// The level of delta the lumped scale holds, kg (0 without a reference).
-  double reference_offset_kg() const;
+  /// The level of delta the lumped scale holds, kg (0 without a reference), into offset_kg_:
+  /// called by every change of the state, so that the per-pair correction is one subtraction.
+  void refresh_offset();
 
   std::array<double, kMaxLearntGears> config_kg_{};
   double std_fraction_ = 0.0;  ///< the config's masses' std per part (common, own)
   double floor_fraction_ = 0.0;
   long min_gear_pairs_ = 1;
   GearMassesState state_;
+  double offset_kg_ = 0.0;  ///< reference's level of delta (refresh_offset)
 };
 
 /// The learnt gear masses of a vehicle: its per-gear rotating masses, unless the config turns
