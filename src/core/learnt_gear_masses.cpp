@@ -13,6 +13,8 @@ using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1>;
 using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMax, kMax>;
 
 constexpr double kUniformStdPerBound = 0.5773502691896258;  // std = bound / sqrt(3)
+/// |relative level| the scale may hold for the gears: as the learnt scale's own bound.
+constexpr double kMaxReferenceLevel = 0.25;
 
 /// The index of covariance (i, j) in GearMassesState::covariance_kg2.
 std::size_t cell(int i, int j) {
@@ -40,6 +42,18 @@ void store(const Vector& m, const Matrix& c, GearMassesState* s) {
       s->covariance_kg2[cell(i, j)] = 0.5 * (c(i, j) + c(j, i));
     }
   }
+}
+
+// The scale's mean is its evidence weighed by precision, the datasheet's mean (0 in log) among
+// them: of a known-mass drive's relative level sum_g s_g (delta_g - c_g) / M it holds the share
+// its evidence weighs. The belief's mean stands for delta.
+double reference_level(const GearMassesState& s) {
+  if (!(s.reference_precision > 0.0)) return 0.0;
+  double sum = -s.reference_applied;
+  for (int i = 0; i < s.gears; ++i) {
+    sum += s.reference_share_per_kg[std::size_t(i)] * s.correction_kg[std::size_t(i)];
+  }
+  return sum / s.reference_precision;
 }
 
 }  // namespace
@@ -79,7 +93,7 @@ void LearntGearMasses::reset() {
       state_.covariance_kg2[cell(i, j)] = prior_variance_kg2(i, j);
     }
   }
-  refresh_offset();
+  refresh_scale_factor();
 }
 
 double LearntGearMasses::correction_kg(int gear) const {
@@ -87,38 +101,34 @@ double LearntGearMasses::correction_kg(int gear) const {
   return state_.correction_kg[std::size_t(gear - 1)];
 }
 
-// The scale's mean is its evidence weighed by precision, the datasheet's mean (1) among them:
-// of a known-mass drive's level sum_g s_g delta_g it holds the share its evidence weighs.
-void LearntGearMasses::refresh_offset() {
-  offset_kg_ = 0.0;
-  if (!(state_.reference_precision > 0.0)) return;
-  double sum = 0.0;
-  for (int i = 0; i < state_.gears; ++i) {
-    sum += state_.reference_share[std::size_t(i)] * state_.correction_kg[std::size_t(i)];
-  }
-  offset_kg_ = sum / state_.reference_precision;
+void LearntGearMasses::refresh_scale_factor() {
+  ++revision_;
+  // The evidence read (M + level M) / M: divided out exactly, not in its logarithm.
+  scale_factor_ = 1.0 / (1.0 + reference_level(state_));
 }
 
-double LearntGearMasses::applied_correction_kg(int gear) const {
-  if (gear < 1 || gear > state_.gears) return 0.0;
-  return correction_kg(gear) - offset_kg_;
-}
-
-void LearntGearMasses::add_reference(const GearPairSums& sums, double evidence_variance,
-                                     double scale_prior_variance) {
-  if (state_.gears == 0 || !(sums.all_da_da > 0.0) || !(evidence_variance > 0.0) ||
+void LearntGearMasses::add_reference(const GearPairSums& sums, double mass_kg,
+                                     double evidence_variance, double scale_prior_variance,
+                                     const LearntGearMasses& applied) {
+  if (state_.gears == 0 || applied.gears() != state_.gears || !(sums.all_da_da > 0.0) ||
+      !(mass_kg > 0.0) || !(evidence_variance > 0.0) || !std::isfinite(evidence_variance) ||
       !(scale_prior_variance > 0.0)) {
     return;
   }
-  if (state_.reference_precision == 0.0) state_.reference_precision = 1.0 / scale_prior_variance;
-  state_.reference_precision += 1.0 / evidence_variance;
-  for (int i = 0; i < state_.gears; ++i) {
+  GearMassesState next = state_;
+  if (next.reference_precision == 0.0) next.reference_precision = 1.0 / scale_prior_variance;
+  next.reference_precision += 1.0 / evidence_variance;
+  const double weight = 1.0 / (evidence_variance * mass_kg);
+  for (int i = 0; i < next.gears; ++i) {
     const double share = sums.da_wheel[std::size_t(i)] / sums.all_da_da;
     if (share > 0.0 && std::isfinite(share)) {
-      state_.reference_share[std::size_t(i)] += share / evidence_variance;
+      next.reference_share_per_kg[std::size_t(i)] += share * weight;
+      next.reference_applied += share * weight * applied.correction_kg(i + 1);
     }
   }
-  refresh_offset();
+  if (!implausible(next).empty()) return;
+  state_ = next;
+  refresh_scale_factor();
 }
 
 double LearntGearMasses::correction_std_kg(int gear) const {
@@ -126,19 +136,15 @@ double LearntGearMasses::correction_std_kg(int gear) const {
   return std::sqrt(state_.covariance_kg2[cell(gear - 1, gear - 1)]);
 }
 
-double LearntGearMasses::mass_variance_kg2(const GearPairSums& sums) const {
+double LearntGearMasses::mass_variance_kg2(const GearPairSums& sums, double mass_kg) const {
   if (state_.gears == 0 || !(sums.all_da_da > 0.0)) return 0.0;
   // dM / d delta_g = sum_g p da dv' / sum p da^2 (LS mass with delta_g dv' in every y of g),
-  // less the share of the reference's mean that the applied corrections take off every gear.
+  // less what the scale factor takes off the whole mass for it.
   Vector s = Vector::Zero(state_.gears);
-  double total = 0.0;
   for (int i = 0; i < state_.gears; ++i) {
     s(i) = sums.da_wheel[std::size_t(i)] / sums.all_da_da;
-    total += s(i);
-  }
-  if (state_.reference_precision > 0.0) {
-    for (int i = 0; i < state_.gears; ++i) {
-      s(i) -= total * state_.reference_share[std::size_t(i)] / state_.reference_precision;
+    if (state_.reference_precision > 0.0 && mass_kg > 0.0) {
+      s(i) -= mass_kg * state_.reference_share_per_kg[std::size_t(i)] / state_.reference_precision;
     }
   }
   return s.dot(covariance(state_) * s);
@@ -188,7 +194,7 @@ bool LearntGearMasses::add_evidence(const GearPairSums& sums, double mass_kg, do
   ++next.drives;
   if (!implausible(next).empty()) return false;
   state_ = next;
-  refresh_offset();
+  refresh_scale_factor();
   return true;
 }
 
@@ -198,11 +204,12 @@ std::string LearntGearMasses::implausible(const GearMassesState& s) const {
            std::to_string(state_.gears);
   }
   if (s.drives < 0) return "learnt gear masses' drive count out of range";
-  if (!std::isfinite(s.reference_precision) || s.reference_precision < 0.0) {
-    return "learnt gear masses' reference precision out of range";
+  if (!std::isfinite(s.reference_precision) || s.reference_precision < 0.0 ||
+      !std::isfinite(s.reference_applied)) {
+    return "learnt gear masses' reference out of range";
   }
   for (int i = 0; i < s.gears; ++i) {
-    const double share = s.reference_share[std::size_t(i)];
+    const double share = s.reference_share_per_kg[std::size_t(i)];
     if (!std::isfinite(share) || share < 0.0) {
       return "learnt gear masses' reference share of gear " + std::to_string(i + 1) +
              " out of range";
@@ -224,6 +231,11 @@ std::string LearntGearMasses::implausible(const GearMassesState& s) const {
       return "learnt gear masses' variance of gear " + std::to_string(i + 1) + " out of range";
     }
   }
+  // The level the scale holds is a few per cent of the mass, as the rotating masses are.
+  if (std::abs(reference_level(s)) > kMaxReferenceLevel) {
+    return "learnt gear masses' reference level " + std::to_string(reference_level(s)) +
+           " beyond its bound";
+  }
   if (s.gears > 0 && covariance(s).llt().info() != Eigen::Success) {
     return "learnt gear masses' covariance not positive definite";
   }
@@ -242,7 +254,7 @@ LearntGearMasses learnt_gear_masses_for(const VehicleParams& vehicle,
 bool LearntGearMasses::restore(const GearMassesState& s) {
   if (!implausible(s).empty()) return false;
   state_ = s;
-  refresh_offset();
+  refresh_scale_factor();
   return true;
 }
 

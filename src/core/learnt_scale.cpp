@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "vmass/core/param_check.hpp"
 
@@ -87,13 +88,23 @@ ScaleEvidence LearntScale::add_evidence(double log_scale, double variance) {
     }
   }
   // Huber: the outlier is taken as if its variance put it at outlier_sigma.
-  const double inflation = std::abs(z) / params_.outlier_sigma;
-  take(log_scale, (state_.log_scale_var + variance) * inflation * inflation - state_.log_scale_var);
+  take(log_scale, taken_variance(log_scale, variance));
   state_.pending_outlier_sign = side;
   state_.pending_log_scale = log_scale;
   state_.pending_var = variance;
   ++state_.evidence;
   return ScaleEvidence::kDownweighted;
+}
+
+double LearntScale::taken_variance(double log_scale, double variance) const {
+  if (!std::isfinite(log_scale) || !(variance > 0.0) || !std::isfinite(variance) ||
+      std::abs(log_scale) > params_.max_abs_log_scale) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double z = (log_scale - state_.log_scale) / std::sqrt(state_.log_scale_var + variance);
+  if (std::abs(z) <= params_.outlier_sigma) return variance;
+  const double inflation = std::abs(z) / params_.outlier_sigma;
+  return (state_.log_scale_var + variance) * inflation * inflation - state_.log_scale_var;
 }
 
 std::string LearntScale::implausible(const LearntScaleState& s) const {

@@ -115,17 +115,31 @@ Pipeline::Pipeline(const PipelineParams& params)
                                           params.estimator.model_error_std_fraction)),
       applied_gear_masses_(gear_masses_) {}
 
+void Pipeline::publish_learnt_gears() {
+  if (gear_masses_.revision() == published_gear_revision_) return;
+  published_gear_revision_ = gear_masses_.revision();
+  estimate_.learnt_gears = gear_masses_.gears();
+  estimate_.learnt_gear_drives = gear_masses_.state().drives;
+  for (int gear = 1; gear <= gear_masses_.gears(); ++gear) {
+    const auto i = static_cast<std::size_t>(gear - 1);
+    estimate_.learnt_gear_correction_kg[i] = gear_masses_.correction_kg(gear);
+    estimate_.learnt_gear_std_kg[i] = gear_masses_.correction_std_kg(gear);
+  }
+}
+
+double Pipeline::scale_for_pairs() const {
+  return learnt_.scale() * applied_gear_masses_.scale_factor();
+}
+
 void Pipeline::to_belief_units(RegressionPair* pair) const {
   divide_force(pair, pair_scale_);
   if (GearPairSums::slot(*pair, applied_gear_masses_.gears()) < 0) return;
-  pair->y_n -=
-      applied_gear_masses_.applied_correction_kg(pair->gear) * pair->wheel_delta_accel_mps2;
+  pair->y_n -= applied_gear_masses_.correction_kg(pair->gear) * pair->wheel_delta_accel_mps2;
 }
 
 double Pipeline::uncorrected_y_n(const RegressionPair& pair) const {
   if (GearPairSums::slot(pair, applied_gear_masses_.gears()) < 0) return pair.y_n;
-  return pair.y_n +
-         applied_gear_masses_.applied_correction_kg(pair.gear) * pair.wheel_delta_accel_mps2;
+  return pair.y_n + applied_gear_masses_.correction_kg(pair.gear) * pair.wheel_delta_accel_mps2;
 }
 
 void Pipeline::reset_extractors(double reference_mass_kg) {
@@ -141,7 +155,7 @@ void Pipeline::reset_extractors(double reference_mass_kg) {
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   end_known_mass();
   end_gear_evidence();
-  pair_scale_ = learnt_.scale();
+  pair_scale_ = scale_for_pairs();
   load_unchecked_ = false;
   regressor_->reset(prior);
   supervisor_.on_regressor_reset();
@@ -223,7 +237,9 @@ LearntGearMasses Pipeline::gear_masses_if_ended() const {
   ScaleObservation seen;
   if (scale_observation(known_mass_, belief, params_.estimator.learning,
                         params_.estimator.model_error_std_fraction, &seen)) {
-    out.add_reference(load_sums_, seen.variance, declared_scale_variance(params_.vehicle));
+    out.add_reference(load_sums_, known_mass_.mass_kg,
+                      learnt_.taken_variance(seen.log_scale, seen.variance),
+                      declared_scale_variance(params_.vehicle), applied_gear_masses_);
   }
   out.add_evidence(load_sums_, belief.mass_kg, belief.mu_n);
   return out;
@@ -332,10 +348,10 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   // known mass is evidence of the learnt scale.
   end_known_mass();
   learnt_.drift();
-  pair_scale_ = learnt_.scale();
+  applied_gear_masses_ = gear_masses_;
+  pair_scale_ = scale_for_pairs();
   load_sums_ = GearPairSums{};  // the snapshot took their evidence (gear_masses_if_ended)
   sums_before_stop_ = GearPairSums{};
-  applied_gear_masses_ = gear_masses_;
   has_prior_ = false;
   has_plausible_ = false;
   prior_reason_ = StatusReason::kWaitingForStandstill;
@@ -344,6 +360,7 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   const std::array<BlockCounters, kBlockCount> blocks = estimate_.blocks;
   estimate_ = Estimate{};
   estimate_.blocks = blocks;
+  published_gear_revision_ = -1;  // the learnt gears are shown again
   load_unchecked_ = true;
 }
 
@@ -558,9 +575,12 @@ void Pipeline::end_known_mass() {
   ScaleObservation seen;
   if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
                         params_.estimator.model_error_std_fraction, &seen)) {
+    // The scale now holds this drive's gear mix at the corrections it had, as much as it
+    // takes the evidence (less for an outlier).
+    gear_masses_.add_reference(load_sums_, known_mass_.mass_kg,
+                               learnt_.taken_variance(seen.log_scale, seen.variance),
+                               declared_scale_variance(params_.vehicle), applied_gear_masses_);
     learnt_.add_evidence(seen.log_scale, seen.variance);
-    // The scale now holds this drive's gear mix at the corrections it had.
-    gear_masses_.add_reference(load_sums_, seen.variance, declared_scale_variance(params_.vehicle));
   }
   known_mass_.active = false;
 }
@@ -587,7 +607,7 @@ bool Pipeline::restore_learnt(const PipelineSnapshot& s) {
   if (s.gear_masses_saved) gear_masses_.restore(s.gear_masses);
   applied_gear_masses_ = gear_masses_;
   learnt_.drift();  // a restart with its load unknown is a power cycle
-  if (!has_prior_) pair_scale_ = learnt_.scale();
+  if (!has_prior_) pair_scale_ = scale_for_pairs();
   return true;
 }
 
@@ -624,11 +644,13 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   if (params_.estimator.longitudinal.enabled) needed |= longitudinal_.required_inputs();
   if (params_.estimator.lateral.enabled) needed |= LateralExtractor::kRequired;
   estimate_.invalid_inputs = needed & ~sample.valid;
-  estimate_.learnt_scale = learnt_.scale();
+  // As the next drive will divide by it (what is learnt so far).
+  estimate_.learnt_scale = learnt_.scale() * gear_masses_.scale_factor();
   estimate_.learnt_scale_std = learnt_.relative_std();
   estimate_.learnt_evidence = learnt_.state().evidence;
   estimate_.learnt_changes = learnt_.state().changes;
   estimate_.known_mass = known_mass_.active;
+  publish_learnt_gears();
   refresh_belief();
 }
 
@@ -771,13 +793,13 @@ double Pipeline::model_std_kg(double mass_kg) const {
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' and the converter map's errors move the mass by their share of it, in
   // kg (a truck's low gears, an automatic pulling away).
-  const double rotating_kg = rotating_std_kg();
+  const double rotating_kg = rotating_std_kg(mass_kg);
   const double converter_kg = kUniformStdPerBound * v.torque_converter_map_accuracy_fraction *
                               converter_sensitivity_.sensitivity_kg();
   return std::hypot(relative * std::abs(mass_kg), rotating_kg, converter_kg);
 }
 
-double Pipeline::rotating_std_kg() const {
+double Pipeline::rotating_std_kg(double mass_kg) const {
   const double datasheet_std =
       kUniformStdPerBound * params_.vehicle.rotating_mass_accuracy_fraction;
   if (!applied_gear_masses_.learnt()) {
@@ -789,7 +811,7 @@ double Pipeline::rotating_std_kg() const {
       interval_sums_.all_da_da > 0.0
           ? datasheet_std * interval_sums_.unlearnt_da_term / interval_sums_.all_da_da
           : 0.0;
-  return std::sqrt(applied_gear_masses_.mass_variance_kg2(interval_sums_) +
+  return std::sqrt(applied_gear_masses_.mass_variance_kg2(interval_sums_, mass_kg) +
                    unlearnt_kg * unlearnt_kg);
 }
 

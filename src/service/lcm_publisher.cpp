@@ -157,6 +157,24 @@ void verdicts_to_lcm(const scoring::VerdictTally& tally, vmass::status_t* out) {
   }
 }
 
+namespace {
+
+/// What is learnt about each gear's rotating mass (schema 5).
+void learnt_gears_to_lcm(const Estimate& e, vmass::status_t* out) {
+  const int n = std::clamp(e.learnt_gears, 0, kMaxLearntGears);
+  out->num_learnt_gears = n;
+  out->learnt_gear_correction_kg.resize(static_cast<std::size_t>(n));
+  out->learnt_gear_std_kg.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    out->learnt_gear_correction_kg[k] = finite_or_zero(e.learnt_gear_correction_kg[k]);
+    out->learnt_gear_std_kg[k] = finite_or_zero(e.learnt_gear_std_kg[k]);
+  }
+  out->learnt_gear_drives = e.learnt_gear_drives;
+}
+
+}  // namespace
+
 void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->utime = s.last.estimate.time_us;
   out->schema_version = kLcmSchemaVersion;
@@ -214,6 +232,7 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->learnt_evidence = s.has_tick ? e.learnt_evidence : 0;
   out->learnt_changes = s.has_tick ? e.learnt_changes : 0;
   out->known_mass = s.has_tick && e.known_mass;
+  learnt_gears_to_lcm(s.has_tick ? e : Estimate{}, out);
   out->commands_received = s.commands_received;
   out->last_command_utime = s.last_command_utime;
   out->last_command_result = s.last_command_result;

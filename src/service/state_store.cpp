@@ -18,7 +18,10 @@ namespace vmass::service {
 namespace {
 
 constexpr const char* kMagic = "vmass-state";
-constexpr int kVersion = 3;
+constexpr int kVersion = 4;
+/// Still read: the learnt scale; its gear masses' reference was in kg, not relative to the mass,
+/// and is not taken (the gears are learnt again).
+constexpr int kVersionKgReference = 3;
 constexpr int kVersionWithoutGears = 2;   ///< still read: the learnt scale, no gear masses
 constexpr int kVersionWithoutLearnt = 1;  ///< still read: nothing learnt in it
 
@@ -167,14 +170,15 @@ void write_field(std::string* out, const StateField& field, PipelineSnapshot& s)
   }
 }
 
-/// Format version 3: the learnt gear masses (LearntGearMasses), the covariance row-major.
+/// Format version 4: the learnt gear masses (LearntGearMasses), the covariance row-major.
 void write_gear_masses(std::string* out, const GearMassesState& g) {
   put_int(out, "learnt_gears", g.gears);
   put_int(out, "learnt_gear_drives", g.drives);
   put(out, "learnt_gear_reference_precision", g.reference_precision);
+  put(out, "learnt_gear_reference_applied", g.reference_applied);
   if (g.gears == 0) return;  // a line needs a value
   put_list(out, "learnt_gear_correction_kg", g.correction_kg.data(), g.gears);
-  put_list(out, "learnt_gear_reference_share", g.reference_share.data(), g.gears);
+  put_list(out, "learnt_gear_reference_share_per_kg", g.reference_share_per_kg.data(), g.gears);
   for (int i = 0; i < g.gears; ++i) {
     const std::string key = "learnt_gear_covariance_kg2_" + std::to_string(i + 1);
     put_list(out, key.c_str(), g.covariance_kg2.data() + i * kMaxLearntGears, g.gears);
@@ -358,12 +362,16 @@ std::string read_gear_masses(const ValueReader& in, GearMassesState* g) {
       !e.empty()) {
     return e;
   }
+  if (std::string e = in.real("learnt_gear_reference_applied", &g->reference_applied); !e.empty()) {
+    return e;
+  }
   if (g->gears == 0) return "";
   if (std::string e = in.reals("learnt_gear_correction_kg", g->gears, g->correction_kg.data());
       !e.empty()) {
     return e;
   }
-  if (std::string e = in.reals("learnt_gear_reference_share", g->gears, g->reference_share.data());
+  if (std::string e = in.reals("learnt_gear_reference_share_per_kg", g->gears,
+                               g->reference_share_per_kg.data());
       !e.empty()) {
     return e;
   }
@@ -406,11 +414,12 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
     return fail(e);
   }
   const std::string version = values[kMagic];
-  if (version != std::to_string(kVersion) && version != std::to_string(kVersionWithoutGears) &&
+  if (version != std::to_string(kVersion) && version != std::to_string(kVersionKgReference) &&
+      version != std::to_string(kVersionWithoutGears) &&
       version != std::to_string(kVersionWithoutLearnt)) {
     return fail("not a vmass state file of format version " + std::to_string(kVersion) + ", " +
-                std::to_string(kVersionWithoutGears) + " or " +
-                std::to_string(kVersionWithoutLearnt));
+                std::to_string(kVersionKgReference) + ", " + std::to_string(kVersionWithoutGears) +
+                " or " + std::to_string(kVersionWithoutLearnt));
   }
   const ValueReader in{values};
   SavedState out;

@@ -80,8 +80,8 @@ TEST(LearntGearMassesTest, LearnsHowTheGearsDifferFromDrivesOfManyLoads) {
   EXPECT_LT(g.correction_std_kg(1), 0.3 * truck_gears().correction_std_kg(1));
   // A drive in gear 1 alone now rests on what was learnt: its variance is the belief's.
   const GearPairSums urban = drive_reading(20000.0, delta, {1});
-  EXPECT_NEAR(g.mass_variance_kg2(urban), std::pow(g.correction_std_kg(1), 2), 1e-6);
-  EXPECT_LT(g.mass_variance_kg2(urban), truck_gears().mass_variance_kg2(urban));
+  EXPECT_NEAR(g.mass_variance_kg2(urban, 20000.0), std::pow(g.correction_std_kg(1), 2), 1e-6);
+  EXPECT_LT(g.mass_variance_kg2(urban, 20000.0), truck_gears().mass_variance_kg2(urban, 20000.0));
 }
 
 TEST(LearntGearMassesTest, AnInterceptOfTheDriveIsTakenOutOfEachGearsReading) {
@@ -135,38 +135,65 @@ TEST(LearntGearMassesTest, RefusesWhatNoInertiaErrorExplainsAndRestoresOnlyWhatI
   EXPECT_EQ(other.correction_kg(1), 0.0);
 }
 
+/// The mass a drive on `mass_kg` in `mix` reads through the pipeline's arithmetic: its pairs
+/// (of a car whose true scale is 1 and true corrections `delta`) divided by `scale`, the
+/// corrections `applied` subtracted.
+double reading_kg(double mass_kg, const std::vector<double>& delta, const GearPairSums& mix,
+                  double scale, const LearntGearMasses& applied) {
+  double level = 0.0;
+  double applied_level = 0.0;
+  for (int gear = 1; gear <= 4; ++gear) {
+    const double share = mix.da_wheel[std::size_t(gear - 1)] / mix.all_da_da;
+    level += share * delta[std::size_t(gear - 1)];
+    applied_level += share * applied.correction_kg(gear);
+  }
+  return (mass_kg + level) / scale - applied_level;
+}
+
 // A known mass taught the lumped scale on a drive in some gear mix, with the corrections of that
-// time: the scale holds that mix's level, so what is applied afterwards is relative to it.
-TEST(LearntGearMassesTest, TheCorrectionsAppliedAreRelativeToTheKnownMassDrivesGears) {
-  LearntGearMasses g = truck_gears();
+// time: the scale holds that mix's level relative to the drive's mass. The scale factor takes
+// it off, so that the corrections, applied whole in kg, are right at any mass: a truck's known
+// mass at 12 t does not leave e (1/M2 - 1/M1) at 27 t.
+TEST(LearntGearMassesTest, TheKnownMassDrivesLevelLeavesTheScaleRelativeToItsMass) {
   const std::vector<double> delta = {-2000.0, -600.0, -100.0, 0.0};
-  for (int d = 0; d < 6; ++d) {
-    ASSERT_TRUE(g.add_evidence(drive_reading(20000.0, delta, {1, 2, 3, 4}), 20000.0, 0.0));
+  const LearntGearMasses datasheet = truck_gears();
+  EXPECT_EQ(datasheet.scale_factor(), 1.0);  // no reference yet
+  const GearPairSums urban = drive_reading(12000.0, delta, {1, 2});
+  // The known-mass drive: urban at 12 t, nothing applied yet. Its evidence, far better than
+  // the datasheet, is what the lumped scale learnt.
+  const double m1 = 12000.0;
+  const double learnt_scale = reading_kg(m1, delta, urban, 1.0, datasheet) / m1;
+  // Later, the gears' belief holds the truth.
+  GearMassesState truth = datasheet.state();
+  for (std::size_t i = 0; i < 4; ++i) truth.correction_kg[i] = delta[i];
+  LearntGearMasses g = truck_gears();
+  ASSERT_TRUE(g.restore(truth));
+  g.add_reference(urban, m1, 1e-10, 1e-2, datasheet);
+  EXPECT_NEAR(g.scale_factor() * learnt_scale, 1.0, 1e-6);
+  for (double m2 : {12000.0, 27000.0, 40000.0}) {
+    EXPECT_NEAR(reading_kg(m2, delta, urban, learnt_scale * g.scale_factor(), g), m2, 1e-3) << m2;
   }
-  for (int gear = 1; gear <= 4; ++gear) {
-    EXPECT_EQ(g.applied_correction_kg(gear), g.correction_kg(gear));  // no reference yet
-  }
-  // The known-mass drive was an urban one in gears 1 and 2, in equal shares. Its evidence of the
-  // scale was as good as the datasheet: the scale holds half of that mix's level.
-  const GearPairSums urban = drive_reading(20000.0, delta, {1, 2});
-  LearntGearMasses even = g;
-  even.add_reference(urban, 1e-4, 1e-4);
-  const double level = 0.5 * (g.correction_kg(1) + g.correction_kg(2));
-  for (int gear = 1; gear <= 4; ++gear) {
-    EXPECT_NEAR(even.applied_correction_kg(gear), g.correction_kg(gear) - 0.5 * level, 1e-9)
-        << gear;
-  }
-  // Evidence far better than the datasheet: the scale holds all of it, and the same mix nets
-  // to nothing.
-  g.add_reference(urban, 1e-10, 1e-2);
-  EXPECT_NEAR(g.applied_correction_kg(1) + g.applied_correction_kg(2), 0.0, 1e-3);
-  // A drive in that mix rests on no correction at all: nothing of the belief's variance left.
-  EXPECT_NEAR(g.mass_variance_kg2(urban), 0.0, 1e-3);
-  EXPECT_GT(g.mass_variance_kg2(drive_reading(20000.0, delta, {4})), 0.0);
+  // Evidence as good as the datasheet: the scale holds half of the level.
+  LearntGearMasses even = truck_gears();
+  ASSERT_TRUE(even.restore(truth));
+  even.add_reference(urban, m1, 1e-4, 1e-4, datasheet);
+  EXPECT_NEAR(1.0 / even.scale_factor() - 1.0, 0.5 * (1.0 / g.scale_factor() - 1.0), 1e-9);
+  // A known mass on a drive already corrected: only what was not applied then is in the scale.
+  LearntGearMasses corrected = truck_gears();
+  ASSERT_TRUE(corrected.restore(truth));
+  corrected.add_reference(urban, m1, 1e-10, 1e-2, corrected);
+  EXPECT_NEAR(corrected.scale_factor(), 1.0, 1e-9);
+  // The interval: a drive in that mix at the reference's mass rests on no correction; at
+  // another mass on the part the scale factor moves.
+  EXPECT_NEAR(g.mass_variance_kg2(urban, m1), 0.0, 1e-3);
+  EXPECT_GT(g.mass_variance_kg2(urban, 27000.0), 1.0);
   EXPECT_EQ(g.implausible(g.state()), "");
+  GearMassesState bad = g.state();
+  bad.reference_applied = 1e11;  // a level of -10: none the scale could hold
+  EXPECT_NE(g.implausible(bad), "");
   g.reset();
-  EXPECT_EQ(g.applied_correction_kg(1), 0.0);
-  EXPECT_EQ(g.state().reference_share[0], 0.0);
+  EXPECT_EQ(g.scale_factor(), 1.0);
+  EXPECT_EQ(g.state().reference_share_per_kg[0], 0.0);
   EXPECT_EQ(g.state().reference_precision, 0.0);
 }
 
@@ -262,6 +289,11 @@ TEST(LearntGearMassesTest, ACarsDrivesTeachTheGearsThatItsNextLowGearDriveUses) 
   ASSERT_TRUE(later.restore(saved));
   const double later_error = final_error(later, geared_drive(1650.0, {1, 2}, t0, 50, v), 1650.0);
   EXPECT_LT(std::abs(later_error), 0.5 * std::abs(fresh_error));
+  // The estimate shows what is learnt (status_t's gears).
+  EXPECT_EQ(later.estimate().learnt_gears, 4);
+  EXPECT_EQ(later.estimate().learnt_gear_drives, later.gear_masses().state().drives);
+  EXPECT_EQ(later.estimate().learnt_gear_correction_kg[0], later.gear_masses().correction_kg(1));
+  EXPECT_EQ(later.estimate().learnt_gear_std_kg[3], later.gear_masses().correction_std_kg(4));
   EXPECT_LE(later.estimate().ci_low_kg, 1650.0);
   EXPECT_GE(later.estimate().ci_high_kg, 1650.0);
 
@@ -274,6 +306,44 @@ TEST(LearntGearMassesTest, ACarsDrivesTeachTheGearsThatItsNextLowGearDriveUses) 
   ASSERT_TRUE(unlearnt.restore(no_gears));
   EXPECT_NEAR(final_error(unlearnt, geared_drive(1650.0, {1, 2}, t0, 50, v), 1650.0), fresh_error,
               0.01);
+}
+
+// A known mass on a light load in first gear, then drives that teach the gears: a heavy load in
+// the same gear reads its mass. The known-mass drive's gear-mix level is in the learnt scale
+// relative to its mass; taken off in kg at another mass it would be off by e (1/M2 - 1/M1).
+TEST(LearntGearMassesTest, AKnownMassOnOneLoadHoldsOnAnother) {
+  PipelineParams p = geared_car();
+  p.vehicle.max_mass_kg = 3000.0;
+  const VehicleParams& v = p.vehicle;
+  const double light = 1550.0;
+  const double heavy = 2900.0;
+  Pipeline first(p);
+  ASSERT_TRUE(first.declare_known_mass(light, 5.0));
+  final_error(first, geared_drive(light, {1}, 0.0, 70, v), light);
+  // The scale takes the low gear's level when the drive ends.
+  EXPECT_LT(first.learnt_scale_if_ended().scale(), 0.95);
+  PipelineSnapshot saved = first.snapshot();
+  const std::vector<std::vector<int>> mixes = {{3, 4}, {1, 2, 3}, {2, 3, 4}, {1, 3, 4}, {1, 2, 4}};
+  double t0 = 86400.0;
+  for (std::size_t d = 0; d < mixes.size(); ++d) {
+    Pipeline drive(p);
+    ASSERT_TRUE(drive.restore(saved));
+    final_error(drive,
+                geared_drive(1550.0 + 100.0 * double(d), mixes[d], t0, 20 + unsigned(d) * 7, v),
+                1.0);
+    saved = drive.snapshot();
+    t0 += 86400.0;
+  }
+  Pipeline later(p);
+  ASSERT_TRUE(later.restore(saved));
+  const double error = final_error(later, geared_drive(heavy, {1}, t0, 90, v), heavy);
+  // The level the known-mass drive's gear reads, and what it would leave in kg at this mass.
+  const double level_kg = kCarTrueKg[0] - kCarConfigKg[0];
+  const double kg_offset_error = level_kg * (1.0 / heavy - 1.0 / light);
+  EXPECT_GT(std::abs(kg_offset_error), 0.03);
+  EXPECT_LT(std::abs(error), 0.2 * std::abs(kg_offset_error)) << error;  // 0.03 % against 5.4 %
+  EXPECT_LE(later.estimate().ci_low_kg, heavy);
+  EXPECT_GE(later.estimate().ci_high_kg, heavy);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "learning_car.hpp"
 #include "synthetic_drive.hpp"
@@ -38,7 +39,10 @@ TEST(LearntScaleTest, OneOutlierCountsLessAndTwoInARowAreAChange) {
   const double settled = s.scale();
   EXPECT_NEAR(settled, 1.03, 2e-3);
   // Someone got in at the weighbridge: one drive reads 8 % off. It moves the belief only to
-  // where the evidence is outlier_sigma away.
+  // where the evidence is outlier_sigma away: it is taken with a larger variance.
+  EXPECT_EQ(s.taken_variance(std::log(1.03 * 1.001), 1e-4), 1e-4);
+  EXPECT_GT(s.taken_variance(std::log(1.03 * 0.92), 1e-4), 5.0 * 1e-4);
+  EXPECT_EQ(s.taken_variance(std::log(1.5), 1e-4), std::numeric_limits<double>::infinity());
   EXPECT_EQ(s.add_evidence(std::log(1.03 * 0.92), 1e-4), ScaleEvidence::kDownweighted);
   EXPECT_GT(s.scale(), settled - 0.02);
   EXPECT_EQ(s.state().changes, 0);

@@ -122,6 +122,11 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   status.last.estimate.learnt_scale_std = 0.012;
   status.last.estimate.learnt_evidence = 2;
   status.last.estimate.known_mass = true;
+  // Schema 5: the learnt rotating masses of three gears.
+  status.last.estimate.learnt_gears = 3;
+  status.last.estimate.learnt_gear_correction_kg = {-1250.5, -310.25, 12.0};
+  status.last.estimate.learnt_gear_std_kg = {400.0, 150.5, 30.25};
+  status.last.estimate.learnt_gear_drives = 6;
   status.commands_received = 1;
   status.last_command_utime = 1733358000000000;
   status.last_command_result = "accepted: known mass 1650.0 kg (std 8.2 kg) from the next tick";
@@ -195,7 +200,7 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.tick_overruns, 2);
   EXPECT_EQ(s.jitter_p99_us, 240.0);
   EXPECT_TRUE(s.state_restored);
-  EXPECT_EQ(s.schema_version, 4);
+  EXPECT_EQ(s.schema_version, 5);
   ASSERT_EQ(s.num_verdicts, static_cast<int>(PairVerdict::kCount));
   EXPECT_EQ(s.verdict_name[0], "accepted");
   const auto steering = static_cast<std::size_t>(PairVerdict::kSteering);
@@ -206,6 +211,11 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.learnt_scale, 1.031);
   EXPECT_EQ(s.learnt_scale_std, 0.012);
   EXPECT_EQ(s.learnt_evidence, 2);
+  ASSERT_EQ(s.num_learnt_gears, 3);
+  EXPECT_EQ(s.learnt_gear_correction_kg[0], -1250.5);
+  EXPECT_EQ(s.learnt_gear_correction_kg[2], 12.0);
+  EXPECT_EQ(s.learnt_gear_std_kg[1], 150.5);
+  EXPECT_EQ(s.learnt_gear_drives, 6);
   EXPECT_TRUE(s.known_mass);
   EXPECT_EQ(s.commands_received, 1);
   EXPECT_EQ(s.last_command_utime, 1733358000000000);

@@ -102,9 +102,24 @@ TEST(MonitorReport, WhatIsLearntAboutTheCar) {
   s.learnt_changes = 1;
   EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
                 .find("\nlearnt    scale 1.031 +- 1.2 % from 1 drive on a known mass\n"
-                      "          1 change of the car detected\n"),
+                      "          1 change of the car detected"),
             std::string::npos)
       << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  // The gears' rotating masses: the datasheet's until a drive in two gears taught them.
+  s.num_learnt_gears = 2;
+  s.learnt_gear_correction_kg = {0.0, 0.0};
+  s.learnt_gear_std_kg = {1386.0, 693.0};
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
+                .find("rotating masses: datasheet (no drive with two gears yet)"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  s.learnt_gear_drives = 3;
+  s.learnt_gear_correction_kg = {-1250.4, 36.0};
+  s.learnt_gear_std_kg = {400.2, 150.0};
+  const std::string report = monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  EXPECT_NE(report.find("rotating masses from 3 drives:"), std::string::npos) << report;
+  EXPECT_NE(report.find("gear 1 -1250 +- 400 kg   gear 2 +36 +- 150 kg\n"), std::string::npos)
+      << report;
 }
 
 TEST(MonitorReport, ADeclaredMassSaysSo) {

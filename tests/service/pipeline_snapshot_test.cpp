@@ -82,7 +82,8 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.gear_masses.drives, b.gear_masses.drives);
   EXPECT_EQ(a.gear_masses.correction_kg, b.gear_masses.correction_kg);
   EXPECT_EQ(a.gear_masses.covariance_kg2, b.gear_masses.covariance_kg2);
-  EXPECT_EQ(a.gear_masses.reference_share, b.gear_masses.reference_share);
+  EXPECT_EQ(a.gear_masses.reference_share_per_kg, b.gear_masses.reference_share_per_kg);
+  EXPECT_EQ(a.gear_masses.reference_applied, b.gear_masses.reference_applied);
   EXPECT_EQ(a.gear_masses.reference_precision, b.gear_masses.reference_precision);
 }
 
@@ -375,15 +376,17 @@ TEST_F(StateFileTest, TheLearntSectionRoundTripsAndAVersionOneFileStillLoads) {
   EXPECT_EQ(back.snapshot.nig_mean[0], state_.snapshot.nig_mean[0]);
 }
 
-// Format version 3 adds the learnt gear masses; a version-2 file (before them) still loads its
-// learnt scale and leaves the pipeline's own gear masses alone.
-TEST_F(StateFileTest, TheGearSectionRoundTripsAndAVersionTwoFileStillLoads) {
+// Format version 3 added the learnt gear masses, version 4 their reference relative to the mass.
+// A version-2 file (before them) and a version-3 one (whose reference was in kg) still load their
+// learnt scale and leave the pipeline's own gear masses alone.
+TEST_F(StateFileTest, TheGearSectionRoundTripsAndOlderFormatsStillLoad) {
   SavedState geared = state_;
   GearMassesState& g = geared.snapshot.gear_masses;
   g.gears = 3;
   g.drives = 4;
   g.correction_kg = {-412.25, -80.5, 3.125};
-  g.reference_share = {0.25, 0.5, 0.125};
+  g.reference_share_per_kg = {0.25, 0.5, 0.125};
+  g.reference_applied = -0.0625;
   g.reference_precision = 3125.5;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j)
@@ -405,6 +408,16 @@ TEST_F(StateFileTest, TheGearSectionRoundTripsAndAVersionTwoFileStillLoads) {
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   ASSERT_TRUE(service::parse_state(v2 + "checksum " + hex + "\n", &back, &error)) << error;
   EXPECT_TRUE(back.snapshot.learnt_saved);
+  EXPECT_EQ(back.snapshot.learnt.log_scale, 0.0312);
+  EXPECT_FALSE(back.snapshot.gear_masses_saved);
+
+  // Version 3: its gear section is not taken.
+  std::string v3 = text.substr(0, text.find("checksum "));
+  v3.replace(0, v3.find('\n'), "vmass-state 3");
+  h = 0xcbf29ce484222325ull;
+  for (unsigned char c : v3) h = (h ^ c) * 0x100000001b3ull;
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  ASSERT_TRUE(service::parse_state(v3 + "checksum " + hex + "\n", &back, &error)) << error;
   EXPECT_EQ(back.snapshot.learnt.log_scale, 0.0312);
   EXPECT_FALSE(back.snapshot.gear_masses_saved);
 

@@ -92,7 +92,26 @@ std::string estimate_lines(const vmass::mass_estimate_t& e) {
   return out;
 }
 
-/// What vmassd learnt about the car: the lumped longitudinal scale and the changes it saw.
+/// Each gear's learnt rotating mass, e.g. "gear 1 -1250 +- 400 kg", once a drive taught it.
+void gear_items(const vmass::status_t& s, std::vector<std::string>* items) {
+  if (s.num_learnt_gears <= 0) return;
+  if (s.learnt_gear_drives <= 0) {
+    items->emplace_back("rotating masses: datasheet (no drive with two gears yet)");
+    return;
+  }
+  items->push_back(format("rotating masses from %lld drive%s:", ll(s.learnt_gear_drives),
+                          s.learnt_gear_drives == 1 ? "" : "s"));
+  const auto n =
+      std::min<std::size_t>({static_cast<std::size_t>(s.num_learnt_gears),
+                             s.learnt_gear_correction_kg.size(), s.learnt_gear_std_kg.size()});
+  for (std::size_t i = 0; i < n; ++i) {
+    items->push_back(format("gear %zu %+.0f +- %.0f kg", i + 1, s.learnt_gear_correction_kg[i],
+                            s.learnt_gear_std_kg[i]));
+  }
+}
+
+/// What vmassd learnt about the car: the lumped longitudinal scale, the gears' rotating masses
+/// and the changes it saw.
 std::string learnt_lines(const vmass::status_t& s) {
   std::vector<std::string> items;
   if (s.learnt_evidence <= 0) {
@@ -106,6 +125,7 @@ std::string learnt_lines(const vmass::status_t& s) {
     items.push_back(format("%lld change%s of the car detected", ll(s.learnt_changes),
                            s.learnt_changes == 1 ? "" : "s"));
   }
+  gear_items(s, &items);
   return wrap_items("learnt", items);
 }
 

@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 
+#include "vmass/core/gear_pair_sums.hpp"
 #include "vmass/core/regression_pair.hpp"
 #include "vmass/core/sample.hpp"
 #include "vmass/core/supervisor.hpp"
@@ -114,6 +115,12 @@ struct Estimate {
   long learnt_evidence = 0;
   long learnt_changes = 0;
   bool known_mass = false;  ///< the published mass is a mass the user declared
+  /// Each gear's rotating mass learnt across drives (LearntGearMasses): the correction of the
+  /// config's mass of gear i + 1 and its std, kg, for learnt_gears gears; the drives it rests on.
+  int learnt_gears = 0;
+  std::array<double, kMaxLearntGears> learnt_gear_correction_kg{};
+  std::array<double, kMaxLearntGears> learnt_gear_std_kg{};
+  long learnt_gear_drives = 0;
 
   bool has_mass() const { return mass_known; }
   /// Human-readable reason, e.g. "inputs invalid: speed, yaw_rate" (allocates; not for hot paths).

@@ -16,7 +16,10 @@
 // unknown: only the differences between gears count, and what no difference can show (a shift
 // common to every gear) stays with the prior. The gears whose config mass is small (the top
 // ones) are pinned by their prior, the low ones learn. The pipeline subtracts the learnt delta_g
-// dv' from each pair of gear g, and the interval holds what is left of the belief.
+// dv' from each pair of gear g, and the interval holds what is left of the belief. A drive on a
+// known mass taught the lumped scale its gear mix's level relative to its mass; the pipeline
+// takes that level off the scale (scale_factor), so that the level is removed once, in kg, at
+// any mass.
 //
 // Pure; not thread-safe (one owner).
 #pragma once
@@ -38,11 +41,15 @@ struct GearMassesState {
   /// Its covariance, kg^2, row-major with stride kMaxLearntGears.
   std::array<double, kMaxLearntGears * kMaxLearntGears> covariance_kg2{};
   long drives = 0;  ///< drives (loads) whose evidence was taken
-  /// The gear mix of the drives on a known mass: per gear, the sum over them of the mass's
-  /// sensitivity to the gear's correction (GearPairSums) times the precision of the scale's
-  /// evidence the drive gave. Their mass taught the lumped scale with the corrections of that
-  /// time: the scale holds their mix's level as much as their evidence weighs in it.
-  std::array<double, kMaxLearntGears> reference_share{};
+  /// The gear mix of the drives on a known mass, relative to their mass: per gear, the sum over
+  /// them of the mass's sensitivity to the gear's correction (GearPairSums) over the drive's
+  /// mass, times the precision of the scale's evidence the drive gave, 1/kg. A drive's evidence
+  /// of log kappa holds its mix's level sum_g s_g (delta_g - c_g) / M, c_g the corrections
+  /// applied then: the scale holds it as much as the evidence weighs in the scale's mean.
+  std::array<double, kMaxLearntGears> reference_share_per_kg{};
+  /// The same sum of the level of the corrections applied on those drives, sum_g s_g c_g / M
+  /// times the precision (they took that level off already).
+  double reference_applied = 0.0;
   /// The scale's precision with that evidence: its datasheet precision plus the evidence's
   /// (0 without a reference).
   double reference_precision = 0.0;
@@ -58,23 +65,28 @@ class LearntGearMasses {
                    double floor_fraction, long min_gear_pairs);
 
   int gears() const { return state_.gears; }
+  /// Counts the changes of the belief: what shows it is refreshed only when it moves.
+  long revision() const { return revision_; }
   bool learnt() const { return state_.drives > 0; }
   const GearMassesState& state() const { return state_; }
   /// The learnt delta of `gear` (1-based), kg; 0 for a gear not learnt.
   double correction_kg(int gear) const;
-  /// What the pipeline subtracts for `gear`: its delta less the level of the known-mass drives'
-  /// gear mix that the lumped scale already holds (their mean delta, weighed as their evidence
-  /// weighs in the scale), kg.
-  double applied_correction_kg(int gear) const;
+  /// The factor the lumped scale is multiplied by before the pairs are divided by it: the
+  /// known-mass drives' evidence put their gear mix's level (relative to their mass) into the
+  /// scale, which the corrections now take off each pair in kg. Relative, so that it holds at
+  /// another mass: a level of e kg learnt at M1 and taken off in kg at M2 would leave an error
+  /// of e (1/M2 - 1/M1) (-7 % for a truck's 12 -> 27 t with e = 1.5 t). 1 without a reference.
+  double scale_factor() const { return scale_factor_; }
   /// Its std, kg (0 for a gear not learnt).
   double correction_std_kg(int gear) const;
   /// A drive on a known mass whose evidence the lumped scale took, with that evidence's variance
-  /// and the scale's datasheet variance: its pairs' gear mix becomes part of the reference.
-  void add_reference(const GearPairSums& sums, double evidence_variance,
-                     double scale_prior_variance);
-  /// The variance the belief in delta leaves in a mass fitted on `sums` with the applied
-  /// corrections, kg^2.
-  double mass_variance_kg2(const GearPairSums& sums) const;
+  /// and the scale's datasheet variance, its mass and the corrections applied on it: its pairs'
+  /// gear mix becomes part of the reference.
+  void add_reference(const GearPairSums& sums, double mass_kg, double evidence_variance,
+                     double scale_prior_variance, const LearntGearMasses& applied);
+  /// The variance the belief in delta leaves in a mass of mass_kg fitted on `sums` with these
+  /// corrections and this scale factor, kg^2.
+  double mass_variance_kg2(const GearPairSums& sums, double mass_kg) const;
 
   /// One load's evidence: its regression's pairs per gear and its intercept mu, and its mass
   /// (for the floor). False (nothing changed) when fewer than two gears have enough pairs, or
@@ -91,16 +103,17 @@ class LearntGearMasses {
 
  private:
   double prior_variance_kg2(int i, int j) const;
-  /// The level of delta the lumped scale holds, kg (0 without a reference), into offset_kg_:
-  /// called by every change of the state, so that the per-pair correction is one subtraction.
-  void refresh_offset();
+  /// scale_factor_ from the state: called by every change of it, so that the pipeline reads a
+  /// number.
+  void refresh_scale_factor();
 
   std::array<double, kMaxLearntGears> config_kg_{};
   double std_fraction_ = 0.0;  ///< the config's masses' std per part (common, own)
   double floor_fraction_ = 0.0;
   long min_gear_pairs_ = 1;
   GearMassesState state_;
-  double offset_kg_ = 0.0;  ///< reference's level of delta (refresh_offset)
+  long revision_ = 0;
+  double scale_factor_ = 1.0;  ///< 1 / (1 + the reference's level) (refresh_scale_factor)
 };
 
 /// The learnt gear masses of a vehicle: its per-gear rotating masses, unless the config turns

@@ -85,6 +85,10 @@ class LearntScale {
 
   /// One drive's evidence: log kappa and its variance (> 0).
   ScaleEvidence add_evidence(double log_scale, double variance);
+  /// The variance add_evidence() would take that evidence with now: its own, an outlier's
+  /// inflated one (Huber), or infinity when it would be refused. A change of the car restarts
+  /// the belief from two pieces of evidence; this then gives the evidence's own.
+  double taken_variance(double log_scale, double variance) const;
   /// The vehicle was switched off and on: the belief widens by the drift.
   void drift();
   /// Back to the datasheet (a user's reset).

@@ -209,6 +209,11 @@ class Pipeline {
   void end_known_mass();
   /// The current load's gears' evidence into the learnt gear masses; the load's sums restart.
   void end_gear_evidence();
+  /// What is learnt about each gear's rotating mass, into the estimate.
+  void publish_learnt_gears();
+  /// The scale the pairs' force is divided by: the learnt one, less the gear-mix level its
+  /// known-mass evidence holds that the applied gear corrections take off in kg.
+  double scale_for_pairs() const;
   /// A longitudinal pair in the belief's units: divided by the learnt scale, its gear's learnt
   /// rotating-mass correction subtracted.
   void to_belief_units(RegressionPair* pair) const;
@@ -216,7 +221,7 @@ class Pipeline {
   double uncorrected_y_n(const RegressionPair& pair) const;
   /// The rotating masses' std in the mass, kg: the learnt belief's once it rests on a drive,
   /// else the datasheet's.
-  double rotating_std_kg() const;
+  double rotating_std_kg(double mass_kg) const;
   /// A declared known mass becomes the belief's start.
   void begin_known_mass();
   /// The known mass as the published estimate.
@@ -300,6 +305,7 @@ class Pipeline {
   /// drive's own evidence takes effect at the next power cycle, so that one stretch of one load
   /// never corrects the next load of the same drive (a tractor's solo stretch its coupled one).
   LearntGearMasses applied_gear_masses_;
+  long published_gear_revision_ = -1;  ///< gear_masses_'s revision in estimate_
   KnownMass known_mass_;
   KnownMass declared_;       ///< active: declared, taken at the next step
   double pair_scale_ = 1.0;  ///< kappa the belief's longitudinal pairs are divided by
