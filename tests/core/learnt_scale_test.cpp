@@ -9,6 +9,7 @@
 
 #include "learning_car.hpp"
 #include "synthetic_drive.hpp"
+#include "vmass/core/known_mass.hpp"
 #include "vmass/core/pipeline.hpp"
 
 namespace vmass {
@@ -140,6 +141,27 @@ TEST(KnownMassTest, APublishedKnownMassTeachesTheScaleThatTheNextDriveUses) {
   const Estimate& e3 = drive(fresh, scaled_drive(1800.0, 86400.0, 2, v));
   EXPECT_NEAR(e3.mass_kg, 1.05 * 1800.0, 0.01 * 1800.0);
   EXPECT_GT(e3.ci_high_kg - e3.ci_low_kg, 1.5 * (e2.ci_high_kg - e2.ci_low_kg));
+}
+
+// A drive on a known mass is evidence once its regression has pairs and a width that the
+// evidence's variance then carries: a wide drive counts little, one that barely started not at
+// all.
+TEST(KnownMassTest, ADriveIsEvidenceFromEnoughPairsAndANarrowEnoughRegression) {
+  const KnownMass known{true, 1600.0, 8.0, 1.02};
+  RegressorState drive;
+  drive.mass_kg = 1680.0;
+  drive.mass_std_kg = 0.05 * 1680.0;
+  drive.pairs_used = 400;
+  const LearningParams params;
+  ScaleObservation seen;
+  ASSERT_TRUE(scale_observation(known, drive, params, 0.01, &seen));
+  EXPECT_NEAR(seen.log_scale, std::log(1.02 * 1680.0 / 1600.0), 1e-12);
+  EXPECT_NEAR(seen.variance, 0.05 * 0.05 + 0.005 * 0.005 + 0.01 * 0.01, 1e-12);
+  drive.mass_std_kg = 0.07 * 1680.0;  // beyond max_evidence_std_fraction (6 %)
+  EXPECT_FALSE(scale_observation(known, drive, params, 0.01, &seen));
+  drive.mass_std_kg = 0.01 * 1680.0;
+  drive.pairs_used = 99;  // below min_evidence_pairs
+  EXPECT_FALSE(scale_observation(known, drive, params, 0.01, &seen));
 }
 
 TEST(KnownMassTest, AnImplausibleDeclarationIsRefusedAndChangesNothing) {
