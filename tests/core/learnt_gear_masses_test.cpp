@@ -248,6 +248,25 @@ double final_error(Pipeline& pipeline, const std::vector<Sample>& samples, doubl
   return pipeline.estimate().mass_kg / mass_kg - 1.0;
 }
 
+/// Five drives on other loads and gear mixes, each a power cycle after the one before, from
+/// `start` (nullptr: a fresh car) at *t0_s, a day apart; the last one's snapshot.
+PipelineSnapshot teach_gears(const PipelineParams& p, const PipelineSnapshot* start, unsigned seed,
+                             double* t0_s) {
+  const std::vector<std::vector<int>> mixes = {{3, 4}, {1, 2, 3}, {2, 3, 4}, {1, 3, 4}, {1, 2, 4}};
+  PipelineSnapshot saved = start ? *start : PipelineSnapshot{};
+  for (std::size_t d = 0; d < mixes.size(); ++d) {
+    Pipeline drive(p);
+    if (start || d > 0) EXPECT_TRUE(drive.restore(saved)) << d;
+    const unsigned drive_seed = seed + unsigned(d) * 7;
+    final_error(drive,
+                geared_drive(1550.0 + 100.0 * double(d), mixes[d], *t0_s, drive_seed, p.vehicle),
+                1.0);
+    saved = drive.snapshot();
+    *t0_s += 86400.0;
+  }
+  return saved;
+}
+
 TEST(LearntGearMassesTest, ACarsDrivesTeachTheGearsThatItsNextLowGearDriveUses) {
   const PipelineParams p = geared_car();
   const VehicleParams& v = p.vehicle;
@@ -263,20 +282,8 @@ TEST(LearntGearMassesTest, ACarsDrivesTeachTheGearsThatItsNextLowGearDriveUses) 
   EXPECT_EQ(one_gear.snapshot().gear_masses.drives, 0);
 
   // Drives on other loads and gear mixes, each a power cycle after the one before.
-  const std::vector<std::vector<int>> mixes = {{3, 4}, {1, 2, 3}, {2, 3, 4}, {1, 3, 4}, {1, 2, 4}};
-  PipelineSnapshot saved;
   double t0 = 0.0;
-  for (std::size_t d = 0; d < mixes.size(); ++d) {
-    Pipeline drive(p);
-    if (d > 0) {
-      ASSERT_TRUE(drive.restore(saved));
-    }
-    final_error(drive,
-                geared_drive(1550.0 + 100.0 * double(d), mixes[d], t0, 10 + unsigned(d) * 7, v),
-                1.0);
-    saved = drive.snapshot();
-    t0 += 86400.0;
-  }
+  const PipelineSnapshot saved = teach_gears(p, nullptr, 10, &t0);
   EXPECT_GE(saved.gear_masses.drives, 4);
   // The learnt gear 1 carries less than the config, by about what the truth says relative to
   // the top gear.
@@ -322,18 +329,9 @@ TEST(LearntGearMassesTest, AKnownMassOnOneLoadHoldsOnAnother) {
   final_error(first, geared_drive(light, {1}, 0.0, 70, v), light);
   // The scale takes the low gear's level when the drive ends.
   EXPECT_LT(first.learnt_scale_if_ended().scale(), 0.95);
-  PipelineSnapshot saved = first.snapshot();
-  const std::vector<std::vector<int>> mixes = {{3, 4}, {1, 2, 3}, {2, 3, 4}, {1, 3, 4}, {1, 2, 4}};
+  const PipelineSnapshot known = first.snapshot();
   double t0 = 86400.0;
-  for (std::size_t d = 0; d < mixes.size(); ++d) {
-    Pipeline drive(p);
-    ASSERT_TRUE(drive.restore(saved));
-    final_error(drive,
-                geared_drive(1550.0 + 100.0 * double(d), mixes[d], t0, 20 + unsigned(d) * 7, v),
-                1.0);
-    saved = drive.snapshot();
-    t0 += 86400.0;
-  }
+  const PipelineSnapshot saved = teach_gears(p, &known, 20, &t0);
   Pipeline later(p);
   ASSERT_TRUE(later.restore(saved));
   const double error = final_error(later, geared_drive(heavy, {1}, t0, 90, v), heavy);
