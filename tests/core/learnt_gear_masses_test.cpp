@@ -256,7 +256,9 @@ PipelineSnapshot teach_gears(const PipelineParams& p, const PipelineSnapshot* st
   PipelineSnapshot saved = start ? *start : PipelineSnapshot{};
   for (std::size_t d = 0; d < mixes.size(); ++d) {
     Pipeline drive(p);
-    if (start || d > 0) EXPECT_TRUE(drive.restore(saved)) << d;
+    if (start || d > 0) {
+      EXPECT_TRUE(drive.restore(saved)) << d;
+    }
     const unsigned drive_seed = seed + unsigned(d) * 7;
     final_error(drive,
                 geared_drive(1550.0 + 100.0 * double(d), mixes[d], *t0_s, drive_seed, p.vehicle),
