@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "seats.hpp"
 #include "vmass/sim/random_stream.hpp"
@@ -117,6 +118,20 @@ std::string change_cargo(const DrawnVehicle& d, const Seats& s, RandomStream& rn
   return loaded ? "cargo loaded" : "cargo unloaded";
 }
 
+// New tyres: worn tread (about 2 mm) replaced by new (7-9 mm) on a radius of about 0.3 m
+// (cars) to 0.5 m (trucks): the radius grows by 1-3 %.
+double new_tyres_factor(const DrawnVehicle& vehicle, std::uint64_t life) {
+  RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
+                   hash_name("lifetime_tyres") + life);
+  return 1.0 + rng.uniform(0.01, 0.03);
+}
+
+std::string percent_of(double factor) {
+  std::array<char, 16> text{};
+  std::snprintf(text.data(), text.size(), "%+.1f %%", (factor - 1.0) * 100.0);
+  return text.data();
+}
+
 }  // namespace
 
 std::vector<std::string> lifetime_scenario_names() {
@@ -130,8 +145,15 @@ double payload_mass_kg(const std::vector<LoadItem>& items) {
   return sum;
 }
 
+void fit_tyres(double tyre_radius_factor, TrueVehicle* vehicle) {
+  vehicle->wheel_radius_m *= tyre_radius_factor;
+  double& speed_error = vehicle->wheel_speed.radius_error_fraction;
+  speed_error = (1.0 + speed_error) / tyre_radius_factor - 1.0;
+}
+
 std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives,
-                                         std::uint64_t life) {
+                                         std::uint64_t life, int tyre_change_drive) {
+  const double new_tyres = new_tyres_factor(vehicle, life);
   const Seats seats = seats_of(vehicle);
   RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
                    hash_name("lifetime") + life);
@@ -159,6 +181,11 @@ std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives
       drive.load_change += " (" + signed_kg(drive.payload_change_kg) + ")";
     }
     drive.payload = items_of(load, seats);
+    if (tyre_change_drive > 1 && i >= tyre_change_drive) {
+      drive.tyre_radius_factor = new_tyres;
+      if (i == tyre_change_drive)
+        drive.car_change = "new tyres (radius " + percent_of(new_tyres) + ")";
+    }
     out.push_back(drive);
   }
   return out;

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lifetime_run.hpp"
+#include "vmass/sim/lifetime.hpp"
 #include "vmass/sim/population.hpp"
 
 namespace vmass::suite {
@@ -97,6 +98,38 @@ TEST(Lifetime, ALoadAddedWhileParkedIsSeenThroughTheStateFile) {
     const nlohmann::json& outside = life["converged_outside_fraction"];
     EXPECT_TRUE(outside.is_null() || outside.get<double>() <= 0.2) << outside;
   }
+}
+
+// New tyres (vmass-suite --tyre-change-drive) change the car from their drive on, and nothing
+// else: the life's drives and loads are those of the life without them.
+TEST(Lifetime, NewTyresComeBeforeTheirDriveAndLeaveTheLifeAsItWas) {
+  const sim::DrawnVehicle vehicle = sim::draw_vehicle(sim::VehicleClass::kVan, 5);
+  const std::vector<sim::LifetimeDrive> plain = sim::plan_lifetime(vehicle, 10, 2);
+  const std::vector<sim::LifetimeDrive> tyres = sim::plan_lifetime(vehicle, 10, 2, 6);
+  ASSERT_EQ(plain.size(), tyres.size());
+  const double factor = tyres.back().tyre_radius_factor;
+  EXPECT_GE(factor, 1.01);
+  EXPECT_LE(factor, 1.03);
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    SCOPED_TRACE("drive " + std::to_string(i + 1));
+    EXPECT_EQ(plain[i].scenario, tyres[i].scenario);
+    EXPECT_EQ(plain[i].seed, tyres[i].seed);
+    EXPECT_EQ(plain[i].load_change, tyres[i].load_change);
+    EXPECT_DOUBLE_EQ(sim::payload_mass_kg(plain[i].payload),
+                     sim::payload_mass_kg(tyres[i].payload));
+    EXPECT_DOUBLE_EQ(plain[i].tyre_radius_factor, 1.0);
+    EXPECT_DOUBLE_EQ(tyres[i].tyre_radius_factor, i + 1 < 6 ? 1.0 : factor);
+    EXPECT_EQ(tyres[i].car_change.empty(), i + 1 != 6) << tyres[i].car_change;
+  }
+  EXPECT_NE(tyres[5].car_change.find("new tyres (radius +"), std::string::npos);
+
+  // The tyres turn slower for the same speed: the ESC, which assumes the old radius, reads low.
+  sim::TrueVehicle car = vehicle.vehicle;
+  car.wheel_speed.radius_error_fraction = 0.01;
+  const double radius_m = car.wheel_radius_m;
+  sim::fit_tyres(1.02, &car);
+  EXPECT_DOUBLE_EQ(car.wheel_radius_m, 1.02 * radius_m);
+  EXPECT_NEAR(car.wheel_speed.radius_error_fraction, 1.01 / 1.02 - 1.0, 1e-12);
 }
 
 }  // namespace

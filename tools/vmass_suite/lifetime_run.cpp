@@ -161,6 +161,8 @@ nlohmann::json drive_json(const LifetimeSpec& spec, const sim::DrawnVehicle& veh
   j["drive"] = drive.index;
   j["load_change"] = drive.load_change;
   j["payload_change_kg"] = drive.payload_change_kg;
+  j["car_change"] = drive.car_change;
+  j["tyre_radius_factor"] = drive.tyre_radius_factor;
   j["deflection_sensor"] = v.deflection;
   if (!spec.known_mass_drives.empty()) j["known_mass"] = v.known_mass;
   return j;
@@ -175,7 +177,9 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
   const std::vector<Variant> all = variants(spec, vehicle, work_dir);
   for (const Variant& v : all) std::filesystem::remove(v.state_path);
   const std::vector<sim::LifetimeDrive> plan =
-      spec.plan.empty() ? sim::plan_lifetime(vehicle, spec.drives, spec.life) : spec.plan;
+      spec.plan.empty()
+          ? sim::plan_lifetime(vehicle, spec.drives, spec.life, spec.tyre_change_drive)
+          : spec.plan;
   for (const sim::LifetimeDrive& drive : plan) {
     sim::PopulationRun run;
     if (auto m = sim::make_population_run(vehicle, drive.scenario, drive.seed, spec.realism, &run,
@@ -184,6 +188,7 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       out.error = m;
       return out;
     }
+    sim::fit_tyres(drive.tyre_radius_factor, &run.physics.vehicle);  // the config keeps its radius
     sim::SimulationResult result;
     if (auto m = sim::simulate(run.physics, run.simulation, &result); !m.empty()) {
       out.error = m;

@@ -45,6 +45,8 @@ struct LifetimeSpec {
   /// Non-empty: every variant is also carried with its true mass declared as a known mass
   /// (Pipeline::declare_known_mass, a weighbridge ticket) at the start of these drives (1-based).
   std::vector<int> known_mass_drives;
+  /// > 1: new tyres before this drive (sim::plan_lifetime), the config's radius unchanged.
+  int tyre_change_drive = 0;
   /// The declared known mass's relative std (a weighbridge's, or a datasheet's "empty").
   double known_mass_std_fraction = 0.005;
 };

@@ -10,14 +10,15 @@
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
 //   vmass-suite --lifetime DRIVES [--vehicles N | --vehicle-ids ID,...] [--held-out] [--lives K]
-//               [--known-mass-drives LIST]
+//               [--known-mass-drives LIST] [--tyre-change-drive K]
 //               [--knowledge ...] [--estimators bayes,rls] [--keep-dir DIR] [--series-dir DIR]
 //               [--jobs J] --out FILE.jsonl
 //   vmass-suite --list-scenarios | --population-hash
 //
 // --lifetime drives each vehicle DRIVES drives in a row through the daemon's state file (loads
 // changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle;
-// --known-mass-drives also carries each with its true mass declared at those drives.
+// --known-mass-drives also carries each with its true mass declared at those drives;
+// --tyre-change-drive fits new tyres (radius 1-3 % larger) before drive K of every life.
 //
 // --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
 // --series-dir DIR writes per-tick CSVs (10 Hz) of the runs named by --series RUN,... where
@@ -93,6 +94,7 @@ struct Options {
   int jobs = 0;
   int lifetime_drives = 0;        ///< > 0: the lifetime mode
   std::string known_mass_drives;  ///< --lifetime: drives whose true mass is declared
+  int tyre_change_drive = 0;      ///< --lifetime: new tyres before this drive (0: never)
   int lives = 1;
   std::string keep_dir, vehicle_ids;
   std::string population = "cars";         ///< or trucks (truck_population.hpp)
@@ -273,6 +275,12 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
     }
     base.known_mass_drives.push_back(index);
   }
+  if (o.tyre_change_drive != 0 &&
+      (o.tyre_change_drive < 2 || o.tyre_change_drive > o.lifetime_drives)) {
+    return "--tyre-change-drive: " + std::to_string(o.tyre_change_drive) +
+           " is not a drive index 2.." + std::to_string(o.lifetime_drives);
+  }
+  base.tyre_change_drive = o.tyre_change_drive;
   std::vector<std::string> ids = split(o.vehicle_ids);
   if (ids.empty()) {
     ids = population_ids(o);
@@ -395,6 +403,9 @@ int main(int argc, char** argv) {
   app.add_option("--known-mass-drives", o.known_mass_drives,
                  "--lifetime: also carry every variant with its true mass declared as a known "
                  "mass at the start of these drives (e.g. 1)");
+  app.add_option("--tyre-change-drive", o.tyre_change_drive,
+                 "--lifetime: new tyres (radius 1-3 % larger, the config's unchanged) before "
+                 "this drive of every life");
   app.add_option("--vehicle-ids", o.vehicle_ids,
                  "--lifetime: these vehicles (CLASS-SEED,...) instead of the population's");
   app.add_option("--keep-dir", o.keep_dir,

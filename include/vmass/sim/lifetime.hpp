@@ -5,6 +5,11 @@
 // suite's lifetime mode (vmass-suite --lifetime) drives it through the daemon's state file,
 // carried from drive to drive, beside the same drives replayed fresh.
 //
+// A tyre change (plan_lifetime's tyre_change_drive): worn tyres replaced by new ones while
+// parked, the rolling radius 1-3 % larger from then on (tread of 2 mm against 8 mm), which
+// the config's radius never hears of: the force a wheel torque makes and the wheels' speed
+// signal both change by it (fit_tyres).
+//
 // Not modelled: a trailer (it changes the drag, the rolling resistance and the pitch as well
 // as the mass, and the simulator's vehicle has no hitch).
 //
@@ -31,6 +36,9 @@ struct LifetimeDrive {
   std::vector<LoadItem> payload;  ///< at the start, where it sits (placed by the realism)
   std::string load_change;        ///< what changed while parked before it; "" nothing
   double payload_change_kg = 0.0;
+  /// The tyres' rolling radius against the vehicle's as drawn: 1 until a tyre change.
+  double tyre_radius_factor = 1.0;
+  std::string car_change;  ///< what changed on the car itself before it; "" nothing
 };
 
 /// The everyday scenarios a lifetime rotates through (no biased config, no bus faults, no
@@ -39,9 +47,16 @@ std::vector<std::string> lifetime_scenario_names();
 
 /// `drives` drives of `vehicle`'s life number `life` (>= 1; another life, other loads and
 /// other drives). The load changes before every even drive, and before an odd one with
-/// probability 0.3.
+/// probability 0.3. With tyre_change_drive K > 1, new tyres are fitted before drive K (their
+/// radius drawn apart from the loads: a life's loads and drives are the same with and
+/// without).
 std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives,
-                                         std::uint64_t life);
+                                         std::uint64_t life, int tyre_change_drive = 0);
+
+/// The vehicle on the tyres of factor `tyre_radius_factor` (LifetimeDrive): its rolling radius
+/// scaled, and its speed signal, the wheels' turning times the radius the ESC assumes, scaled
+/// by the inverse.
+void fit_tyres(double tyre_radius_factor, TrueVehicle* vehicle);
 
 /// The total mass of the items, kg.
 double payload_mass_kg(const std::vector<LoadItem>& items);
