@@ -37,9 +37,36 @@ LearntScale::LearntScale(const LearningParams& params, double prior_std)
   reset();
 }
 
-double LearntScale::scale() const { return std::exp(state_.log_scale); }
+double LearntScale::anchor_mean() const {
+  return state_.anchor_weighted_log_scale / state_.anchor_weight;
+}
 
-double LearntScale::relative_std() const { return std::sqrt(state_.log_scale_var); }
+double LearntScale::anchor_var() const {
+  const double common = state_.anchor_weighted_common_std / state_.anchor_weight;
+  return 1.0 / state_.anchor_weight + common * common;
+}
+
+// The anchors join the belief only while no known mass informs it: their shared error (the kerb
+// mass, where the payload sits) is as large as what they measure, and a known mass measures
+// kappa without it. Joined to a known mass's belief they only pulled it towards that error
+// (cars with the sensor, drives 5-9: median 0.66 -> 0.78 %, p90 1.98 -> 2.58 %).
+bool LearntScale::anchors_join() const { return state_.anchors > 0 && state_.evidence == 0; }
+
+double LearntScale::log_scale() const {
+  if (!anchors_join()) return state_.log_scale;
+  const double w_known = 1.0 / state_.log_scale_var;
+  const double w_anchor = 1.0 / anchor_var();
+  return (w_known * state_.log_scale + w_anchor * anchor_mean()) / (w_known + w_anchor);
+}
+
+double LearntScale::log_scale_var() const {
+  if (!anchors_join()) return state_.log_scale_var;
+  return 1.0 / (1.0 / state_.log_scale_var + 1.0 / anchor_var());
+}
+
+double LearntScale::scale() const { return std::exp(log_scale()); }
+
+double LearntScale::relative_std() const { return std::sqrt(log_scale_var()); }
 
 void LearntScale::reset() {
   state_ = LearntScaleState{};
@@ -96,6 +123,28 @@ ScaleEvidence LearntScale::add_evidence(double log_scale, double variance) {
   return ScaleEvidence::kDownweighted;
 }
 
+ScaleEvidence LearntScale::add_anchor(double log_scale, double variance, double common_std) {
+  if (!std::isfinite(log_scale) || !(variance > 0.0) || !std::isfinite(variance) ||
+      !(common_std >= 0.0) || !std::isfinite(common_std) ||
+      std::abs(log_scale) > params_.max_abs_log_scale) {
+    return ScaleEvidence::kRefused;
+  }
+  // Judged against everything believed so far, as a known mass is.
+  const double spread = std::sqrt(log_scale_var() + variance + common_std * common_std);
+  const double z = std::abs(log_scale - this->log_scale()) / spread;
+  double taken = variance;
+  if (z > params_.outlier_sigma) {
+    const double inflation = z / params_.outlier_sigma;
+    taken = spread * spread * inflation * inflation - log_scale_var() - common_std * common_std;
+  }
+  const double w = 1.0 / taken;
+  state_.anchor_weight += w;
+  state_.anchor_weighted_log_scale += w * log_scale;
+  state_.anchor_weighted_common_std += w * common_std;
+  ++state_.anchors;
+  return z > params_.outlier_sigma ? ScaleEvidence::kDownweighted : ScaleEvidence::kTaken;
+}
+
 double LearntScale::taken_variance(double log_scale, double variance) const {
   if (!std::isfinite(log_scale) || !(variance > 0.0) || !std::isfinite(variance) ||
       std::abs(log_scale) > params_.max_abs_log_scale) {
@@ -117,6 +166,14 @@ std::string LearntScale::implausible(const LearntScaleState& s) const {
   }
   if (s.evidence < 0 || s.changes < 0 || s.changes > s.evidence) {
     return "learnt scale counts out of range";
+  }
+  if (s.anchors < 0 || !(s.anchor_weight >= 0.0) || !std::isfinite(s.anchor_weight) ||
+      !std::isfinite(s.anchor_weighted_log_scale) || !std::isfinite(s.anchor_weighted_common_std) ||
+      (s.anchors > 0) != (s.anchor_weight > 0.0) ||
+      (s.anchors > 0 &&
+       (std::abs(s.anchor_weighted_log_scale / s.anchor_weight) > params_.max_abs_log_scale ||
+        s.anchor_weighted_common_std < 0.0))) {
+    return "learnt scale's static anchors out of range";
   }
   if (s.pending_outlier_sign < -1 || s.pending_outlier_sign > 1 ||
       !std::isfinite(s.pending_log_scale) || !std::isfinite(s.pending_var) ||

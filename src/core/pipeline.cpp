@@ -113,7 +113,8 @@ Pipeline::Pipeline(const PipelineParams& params)
       learnt_(params.estimator.learning, std::sqrt(declared_scale_variance(params.vehicle))),
       gear_masses_(learnt_gear_masses_for(params.vehicle, params.estimator.learning,
                                           params.estimator.model_error_std_fraction)),
-      applied_gear_masses_(gear_masses_) {}
+      applied_gear_masses_(gear_masses_),
+      static_anchor_(params.estimator.bayes) {}
 
 void Pipeline::publish_learnt_gears() {
   if (gear_masses_.revision() == published_gear_revision_) return;
@@ -154,6 +155,7 @@ void Pipeline::reset_extractors(double reference_mass_kg) {
 
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   end_known_mass();
+  end_static_anchor();
   end_gear_evidence();
   pair_scale_ = scale_for_pairs();
   load_unchecked_ = false;
@@ -217,6 +219,7 @@ void Pipeline::add_to_sensitivities(const RegressionPair& pair) {
 
 void Pipeline::add_to_load_sums(const Extraction& extraction, const PairEvent& event) {
   if (!extraction.has_pair() || event.verdict != PairVerdict::kAccepted) return;
+  static_anchor_.add(extraction.pair);
   load_sums_.add(extraction.pair, uncorrected_y_n(extraction.pair), gear_masses_.gears());
 }
 
@@ -333,6 +336,7 @@ void Pipeline::on_static_mass(const StaticMass& static_mass, StepResult* result)
   } else {
     return;
   }
+  begin_static_anchor(static_mass);
   result->reinitialised = true;
   result->estimate_changed = true;
 }
@@ -347,6 +351,7 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   // that does not). The counters and what was learnt about the car carry over; the drive on a
   // known mass is evidence of the learnt scale.
   end_known_mass();
+  end_static_anchor();
   learnt_.drift();
   applied_gear_masses_ = gear_masses_;
   pair_scale_ = scale_for_pairs();
@@ -442,6 +447,7 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.blocks[1] = supervisor_.counters(Block::kLateral);
   s.time_us = estimate_.time_us;
   s.learnt = learnt_.state();
+  s.static_anchor_pending = anchor_observation(&s.static_anchor);
   s.gear_masses = gear_masses_if_ended().state();
   s.known_mass = known_mass_;
   s.pair_scale = pair_scale_;
@@ -465,6 +471,12 @@ bool Pipeline::fits(const PipelineSnapshot& s) const {
     if (b.ticks < 0 || b.candidates < 0 || b.accepted < 0 || b.rejected_innovation < 0) {
       return false;
     }
+  }
+  const AnchorObservation& a = s.static_anchor;
+  if (s.static_anchor_pending &&
+      (!std::isfinite(a.log_scale) || !(a.variance > 0.0) || !std::isfinite(a.variance) ||
+       !(a.common_std >= 0.0) || !std::isfinite(a.common_std))) {
+    return false;
   }
   if ((s.learnt_saved && !learnt_.implausible(s.learnt).empty()) ||
       (s.gear_masses_saved && !gear_masses_.implausible(s.gear_masses).empty()) ||
@@ -509,6 +521,11 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
     bayes_ = trial;
   }
   if (s.learnt_saved) learnt_.restore(s.learnt);
+  if (s.static_anchor_pending) {
+    static_anchor_.hold(s.static_anchor);
+  } else {
+    static_anchor_.end();
+  }
   if (s.gear_masses_saved) gear_masses_.restore(s.gear_masses);
   applied_gear_masses_ = gear_masses_;
   load_sums_ = GearPairSums{};  // the snapshot's gear masses hold their evidence
@@ -585,8 +602,34 @@ void Pipeline::end_known_mass() {
   known_mass_.active = false;
 }
 
-LearntScale Pipeline::learnt_scale_if_ended() const {
+void Pipeline::begin_static_anchor(const StaticMass& static_mass) {
+  // Its own regression starts as a known mass's does: vague, at the reading.
+  MassPrior vague = static_init_.no_static_prior();
+  vague.mass_std_kg =
+      params_.estimator.learning.anchor_prior_std_fraction * static_mass.prior.mass_kg;
+  static_anchor_.begin(static_mass.prior, static_init_.base_std_kg(), pair_scale_, vague);
+}
+
+bool Pipeline::anchor_observation(AnchorObservation* out) const {
+  return static_anchor_.observation(params_.estimator.learning,
+                                    params_.estimator.model_error_std_fraction, out);
+}
+
+void Pipeline::end_static_anchor() {
+  AnchorObservation seen;
+  if (anchor_observation(&seen)) learnt_.add_anchor(seen.log_scale, seen.variance, seen.common_std);
+  static_anchor_.end();
+}
+
+LearntScale Pipeline::learnt_with_anchor() const {
   LearntScale out = learnt_;
+  AnchorObservation seen;
+  if (anchor_observation(&seen)) out.add_anchor(seen.log_scale, seen.variance, seen.common_std);
+  return out;
+}
+
+LearntScale Pipeline::learnt_scale_if_ended() const {
+  LearntScale out = learnt_with_anchor();
   ScaleObservation seen;
   if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
                         params_.estimator.model_error_std_fraction, &seen)) {
@@ -788,7 +831,7 @@ double Pipeline::model_std_kg(double mass_kg) const {
   // The lumped scale's std: learnt from the car's known masses, or the datasheet's.
   const VehicleParams& v = params_.vehicle;
   const double scale_variance =
-      learnt_.learnt() ? learnt_.state().log_scale_var : declared_scale_variance(v);
+      learnt_.learnt() ? learnt_.log_scale_var() : declared_scale_variance(v);
   const double relative =
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' and the converter map's errors move the mass by their share of it, in

@@ -85,6 +85,7 @@ void record_learnt(const Pipeline& pipeline, int known_masses, ReplaySummary* su
   l.relative_std = learnt.relative_std();
   l.evidence = learnt.state().evidence;
   l.changes = learnt.state().changes;
+  l.anchors = learnt.state().anchors;
   l.known_masses = known_masses;
   l.gear_drives = gears.state().drives;
   for (int g = 1; g <= gears.gears() && gears.learnt(); ++g) {

@@ -46,6 +46,10 @@ void learnt_rows(const ReplaySummary::Result::Learnt& l, std::ostringstream& out
         << fixed(100.0 * l.relative_std, 2) << " %, from " << l.evidence << " drive"
         << (l.evidence == 1 ? "" : "s") << " on a known mass"
         << (l.changes > 0 ? ", " + std::to_string(l.changes) + " changes" : "") << ")\n";
+  } else if (l.anchors > 0) {
+    out << "learnt scale         " << fixed(l.scale, 4) << " (std "
+        << fixed(100.0 * l.relative_std, 2) << " %, from " << l.anchors << " standstill reading"
+        << (l.anchors == 1 ? "" : "s") << " of the load)\n";
   }
   if (l.gear_drives == 0) return;
   out << "learnt gear masses   from " << l.gear_drives << " drive"
@@ -177,6 +181,7 @@ std::string replay_json(const ReplaySummary::Result& r, const std::string& estim
                    {"scale_std", json::fixed(r.learnt->relative_std, 6)},
                    {"evidence", r.learnt->evidence},
                    {"changes", r.learnt->changes},
+                   {"anchors", r.learnt->anchors},
                    {"known_masses", r.learnt->known_masses},
                    {"gear_drives", r.learnt->gear_drives}};
     json::Json gears = json::Json::array();

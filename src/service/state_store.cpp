@@ -18,7 +18,8 @@ namespace vmass::service {
 namespace {
 
 constexpr const char* kMagic = "vmass-state";
-constexpr int kVersion = 4;
+constexpr int kVersion = 5;
+constexpr int kVersionWithoutAnchors = 4;  ///< still read: all but the static anchors (none)
 /// Still read: the learnt scale; its gear masses' reference was in kg, not relative to the mass,
 /// and is not taken (the gears are learnt again).
 constexpr int kVersionKgReference = 3;
@@ -135,6 +136,20 @@ constexpr StateField kLearntFields[] = {
     real("known_mass_std_kg", [](S& s) { return &s.known_mass.std_kg; }),
     real("known_mass_scale_used", [](S& s) { return &s.known_mass.scale_used; }),
 };
+/// Format version 5: the learnt scale's static anchors (LearntScaleState), and the current
+/// load's anchor's evidence so far (taken at the next power cycle).
+constexpr StateField kAnchorFields[] = {
+    real("learnt_anchor_weight", [](S& s) { return &s.learnt.anchor_weight; }),
+    real("learnt_anchor_weighted_log_scale",
+         [](S& s) { return &s.learnt.anchor_weighted_log_scale; }),
+    real("learnt_anchor_weighted_common_std",
+         [](S& s) { return &s.learnt.anchor_weighted_common_std; }),
+    integer("learnt_anchors", [](S& s) { return &s.learnt.anchors; }),
+    flag("static_anchor_pending", [](S& s) { return &s.static_anchor_pending; }),
+    real("static_anchor_log_scale", [](S& s) { return &s.static_anchor.log_scale; }),
+    real("static_anchor_variance", [](S& s) { return &s.static_anchor.variance; }),
+    real("static_anchor_common_std", [](S& s) { return &s.static_anchor.common_std; }),
+};
 static_assert(kBlockCount == 2, "kStateFields lists the counters of two blocks");
 /// Optional (files from before the grade check): "nan" or absent = unknown grade.
 constexpr const char* kGradeKey = "reference_grade_accel_mps2";
@@ -224,6 +239,7 @@ std::string format_state(const SavedState& state) {
   std::snprintf(hex, sizeof hex, "%016" PRIx64, state.learnt_fingerprint);
   out += std::string("learnt_fingerprint ") + hex + "\n";
   for (const StateField& field : kLearntFields) write_field(&out, field, s);
+  for (const StateField& field : kAnchorFields) write_field(&out, field, s);
   write_gear_masses(&out, s.gear_masses);
   std::snprintf(hex, sizeof hex, "%016" PRIx64, fnv1a(out.data(), out.size()));
   out += std::string("checksum ") + hex + "\n";
@@ -414,10 +430,12 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
     return fail(e);
   }
   const std::string version = values[kMagic];
-  if (version != std::to_string(kVersion) && version != std::to_string(kVersionKgReference) &&
+  if (version != std::to_string(kVersion) && version != std::to_string(kVersionWithoutAnchors) &&
+      version != std::to_string(kVersionKgReference) &&
       version != std::to_string(kVersionWithoutGears) &&
       version != std::to_string(kVersionWithoutLearnt)) {
     return fail("not a vmass state file of format version " + std::to_string(kVersion) + ", " +
+                std::to_string(kVersionWithoutAnchors) + ", " +
                 std::to_string(kVersionKgReference) + ", " + std::to_string(kVersionWithoutGears) +
                 " or " + std::to_string(kVersionWithoutLearnt));
   }
@@ -435,7 +453,9 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
     }
   }
   out.snapshot.learnt_saved = version != std::to_string(kVersionWithoutLearnt);
-  out.snapshot.gear_masses_saved = version == std::to_string(kVersion);
+  out.snapshot.gear_masses_saved =
+      version == std::to_string(kVersion) || version == std::to_string(kVersionWithoutAnchors);
+  const bool anchors_saved = version == std::to_string(kVersion);
   if (out.snapshot.learnt_saved) {
     std::string hex;
     if (std::string e = in.text("learnt_fingerprint", &hex); !e.empty()) return fail(e);
@@ -444,6 +464,10 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
       return fail("learnt_fingerprint: not hexadecimal");
     }
     for (const StateField& field : kLearntFields) {
+      if (std::string e = read_table_field(in, field, &out.snapshot); !e.empty()) return fail(e);
+    }
+    for (const StateField& field : kAnchorFields) {
+      if (!anchors_saved) break;
       if (std::string e = read_table_field(in, field, &out.snapshot); !e.empty()) return fail(e);
     }
   }

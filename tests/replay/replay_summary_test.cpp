@@ -187,6 +187,25 @@ TEST(ReplaySummary, TheLearntGearMassesAreShownInTheTableAndTheJson) {
   EXPECT_DOUBLE_EQ(j["learnt"]["gears"][1]["std_kg"].get<double>(), 5.0) << j;
 }
 
+// A drive whose standstill reading anchored the scale, no known mass: the row says so.
+TEST(ReplaySummary, AScaleFromStandstillReadingsSaysSo) {
+  ReplaySummary summary(constant_truth(1700.0, 0.0, 10.0));
+  summary.add(refined(0, 1690.0, 100, 130));
+  ReplaySummary::Result::Learnt learnt;
+  learnt.scale = 0.9812;
+  learnt.relative_std = 0.0231;
+  learnt.anchors = 3;
+  summary.set_learnt(learnt);
+  const std::string table = table_of(summary, "bayes");
+  EXPECT_NE(table.find("learnt scale         0.9812 (std 2.31 %, from 3 standstill readings of "
+                       "the load)\n"),
+            std::string::npos)
+      << table;
+  const json::Json j = json_of(summary, "bayes");
+  EXPECT_EQ(j["learnt"]["anchors"], 3) << j;
+  EXPECT_EQ(j["learnt"]["evidence"], 0) << j;
+}
+
 TEST(ReplaySummary, JsonHasNoMassBeforeAnyEstimate) {
   ReplaySummary summary(std::nullopt);
   summary.add(no_prior_yet(0));

@@ -72,6 +72,14 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.learnt.pending_outlier_sign, b.learnt.pending_outlier_sign);
   EXPECT_EQ(a.learnt.pending_log_scale, b.learnt.pending_log_scale);
   EXPECT_EQ(a.learnt.pending_var, b.learnt.pending_var);
+  EXPECT_EQ(a.learnt.anchor_weight, b.learnt.anchor_weight);
+  EXPECT_EQ(a.learnt.anchor_weighted_log_scale, b.learnt.anchor_weighted_log_scale);
+  EXPECT_EQ(a.learnt.anchor_weighted_common_std, b.learnt.anchor_weighted_common_std);
+  EXPECT_EQ(a.learnt.anchors, b.learnt.anchors);
+  EXPECT_EQ(a.static_anchor_pending, b.static_anchor_pending);
+  EXPECT_EQ(a.static_anchor.log_scale, b.static_anchor.log_scale);
+  EXPECT_EQ(a.static_anchor.variance, b.static_anchor.variance);
+  EXPECT_EQ(a.static_anchor.common_std, b.static_anchor.common_std);
   EXPECT_EQ(a.pair_scale, b.pair_scale);
   EXPECT_EQ(a.known_mass.active, b.known_mass.active);
   EXPECT_EQ(a.known_mass.mass_kg, b.known_mass.mass_kg);
@@ -213,7 +221,8 @@ TEST(PipelineRestore, RefusesWhatDoesNotFitAndChangesNothing) {
 
 // A state saved before any settled standstill at its load (no reference deflection) is restored:
 // a restart within the drive goes on with it; after a power cycle the next standstill's static
-// mass is the start, as on a first drive.
+// mass is the start, as on a first drive. What yesterday's standstill reading anchored of the
+// scale (StaticAnchor) carries over; the load does not.
 TEST(PipelineRestore, WithoutAReferenceTheNextDrivesStandstillGivesTheStart) {
   const PipelineParams params = test_params("bayes");
   Pipeline p(params);
@@ -232,8 +241,18 @@ TEST(PipelineRestore, WithoutAReferenceTheNextDrivesStandstillGivesTheStart) {
   drive(fresh, samples);
   EXPECT_EQ(next_day.estimate().prior_reason, StatusReason::kStaticInitialised);
   EXPECT_EQ(next_day.estimate().initial_mass_kg, fresh.estimate().initial_mass_kg);
-  EXPECT_EQ(next_day.estimate().mass_kg, fresh.estimate().mass_kg);
+  // Yesterday's reading (a load whose position the prior spreads) against its pairs: weak
+  // evidence, the kerb mass's share never averaged away.
+  EXPECT_TRUE(saved.static_anchor_pending);
+  EXPECT_GT(saved.static_anchor.variance, 0.0);
+  EXPECT_GT(saved.static_anchor.common_std, 0.0);
+  EXPECT_EQ(next_day.learnt_scale().state().anchors, 1);
+  EXPECT_EQ(fresh.learnt_scale().state().anchors, 0);
+  EXPECT_GT(next_day.learnt_scale().relative_std(), saved.static_anchor.common_std / 2.0);
+  EXPECT_NEAR(next_day.learnt_scale().scale(), 1.0, 2.0 * next_day.learnt_scale().relative_std());
   EXPECT_NEAR(next_day.estimate().mass_kg, heavier.mass_kg, 0.03 * heavier.mass_kg);
+  EXPECT_LE(next_day.estimate().ci_low_kg, heavier.mass_kg);
+  EXPECT_GE(next_day.estimate().ci_high_kg, heavier.mass_kg);
 }
 
 // ------------------------------------------------------------------------------ state file
@@ -379,7 +398,7 @@ TEST_F(StateFileTest, TheLearntSectionRoundTripsAndAVersionOneFileStillLoads) {
 // Format version 3 added the learnt gear masses, version 4 their reference relative to the mass.
 // A version-2 file (before them) and a version-3 one (whose reference was in kg) still load their
 // learnt scale and leave the pipeline's own gear masses alone.
-TEST_F(StateFileTest, TheGearSectionRoundTripsAndOlderFormatsStillLoad) {
+TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   SavedState geared = state_;
   GearMassesState& g = geared.snapshot.gear_masses;
   g.gears = 3;
@@ -393,6 +412,13 @@ TEST_F(StateFileTest, TheGearSectionRoundTripsAndOlderFormatsStillLoad) {
       g.covariance_kg2[std::size_t(i * kMaxLearntGears + j)] = i == j ? 900.0 + i : 0.1 * (i + j);
   }
   geared.snapshot.learnt = LearntScaleState{0.0312, 1.7e-4, 2, 0, 1, -0.05, 2e-4};
+  LearntScaleState& anchors = geared.snapshot.learnt;
+  anchors.anchor_weight = 2500.25;
+  anchors.anchor_weighted_log_scale = 62.5;
+  anchors.anchor_weighted_common_std = 50.125;
+  anchors.anchors = 3;
+  geared.snapshot.static_anchor_pending = true;
+  geared.snapshot.static_anchor = AnchorObservation{0.0275, 6.25e-4, 0.0234375};
   const std::string text = service::format_state(geared);
   SavedState back;
   std::string error;
@@ -420,6 +446,27 @@ TEST_F(StateFileTest, TheGearSectionRoundTripsAndOlderFormatsStillLoad) {
   ASSERT_TRUE(service::parse_state(v3 + "checksum " + hex + "\n", &back, &error)) << error;
   EXPECT_EQ(back.snapshot.learnt.log_scale, 0.0312);
   EXPECT_FALSE(back.snapshot.gear_masses_saved);
+
+  // Version 4: no static anchors (none taken, none pending).
+  std::string v4 = text.substr(0, text.find("checksum "));
+  v4.replace(0, v4.find('\n'), "vmass-state 4");
+  for (const char* key :
+       {"learnt_anchor_weight ", "learnt_anchor_weighted_log_scale ",
+        "learnt_anchor_weighted_common_std ", "learnt_anchors ", "static_anchor_pending ",
+        "static_anchor_log_scale ", "static_anchor_variance ", "static_anchor_common_std "}) {
+    const std::size_t at = v4.find(std::string("\n") + key);
+    ASSERT_NE(at, std::string::npos) << key;
+    v4.erase(at + 1, v4.find('\n', at + 1) - at);
+  }
+  h = 0xcbf29ce484222325ull;
+  for (unsigned char c : v4) h = (h ^ c) * 0x100000001b3ull;
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  ASSERT_TRUE(service::parse_state(v4 + "checksum " + hex + "\n", &back, &error)) << error;
+  EXPECT_TRUE(back.snapshot.gear_masses_saved);
+  EXPECT_EQ(back.snapshot.learnt.log_scale, 0.0312);
+  EXPECT_EQ(back.snapshot.learnt.anchors, 0);
+  EXPECT_EQ(back.snapshot.learnt.anchor_weight, 0.0);
+  EXPECT_FALSE(back.snapshot.static_anchor_pending);
 
   // A gear line one number short names its key.
   std::string short_row = text.substr(0, text.find("checksum "));

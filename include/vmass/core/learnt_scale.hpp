@@ -14,6 +14,14 @@
 // side, consistent with each other, restart the belief from them. Drift (tyre wear): each power
 // cycle widens the belief a little.
 //
+// Static anchors (a car whose deflection sensor reads its load, StaticAnchor): each drive's
+// pairs against the standstill reading of that load are evidence too, but every reading of the
+// car shares one error, the kerb mass's (fuel, options), which no number of drives averages
+// away. So they are kept apart, as the weighted mean of their evidence (each weighed by its own
+// precision: a load whose position is unknown counts little, the driver alone much) whose
+// variance never falls below the shared part. They join the datasheet's belief until a known
+// mass is declared; from then on the known masses alone make it.
+//
 // Pure; not thread-safe (one owner).
 #pragma once
 
@@ -66,6 +74,12 @@ struct LearntScaleState {
   long pending_outlier_sign = 0;
   double pending_log_scale = 0.0;
   double pending_var = 0.0;
+  /// Static anchors: sums of their evidence x, each weighed by w = 1 / its own variance, and
+  /// of w c, c the relative std every reading of the car shares.
+  double anchor_weight = 0.0;
+  double anchor_weighted_log_scale = 0.0;
+  double anchor_weighted_common_std = 0.0;
+  long anchors = 0;  ///< drives whose static anchor was taken
 };
 
 enum class ScaleEvidence : std::uint8_t {
@@ -80,10 +94,13 @@ class LearntScale {
   /// prior_std: the relative std of kappa the config declares (torque scale, radius, pitch).
   LearntScale(const LearningParams& params, double prior_std);
 
-  double scale() const;  ///< kappa, the belief's median
+  double scale() const;  ///< kappa, the belief's median (known masses and static anchors)
   /// The belief's relative std of kappa (the std of log kappa).
   double relative_std() const;
-  bool learnt() const { return state_.evidence > 0; }
+  double log_scale() const;      ///< the belief's mean of log kappa
+  double log_scale_var() const;  ///< and its variance
+  /// Something measured it: a known mass or a static anchor.
+  bool learnt() const { return state_.evidence > 0 || state_.anchors > 0; }
   const LearntScaleState& state() const { return state_; }
 
   /// One drive's evidence: log kappa and its variance (> 0).
@@ -92,6 +109,10 @@ class LearntScale {
   /// inflated one (Huber), or infinity when it would be refused. A change of the car restarts
   /// the belief from two pieces of evidence; this then gives the evidence's own.
   double taken_variance(double log_scale, double variance) const;
+  /// One drive's static anchor: log kappa, its own variance (> 0) and the relative std every
+  /// reading of the car shares (>= 0). Evidence further than outlier_sigma from the belief is
+  /// taken with the variance that puts it there (Huber); refused as add_evidence refuses.
+  ScaleEvidence add_anchor(double log_scale, double variance, double common_std);
   /// The vehicle was switched off and on: the belief widens by the drift.
   void drift();
   /// Back to the datasheet (a user's reset).
@@ -103,6 +124,11 @@ class LearntScale {
 
  private:
   void take(double log_scale, double variance);
+  /// The anchors are part of the belief: some, and no known mass yet.
+  bool anchors_join() const;
+  /// The static anchors' mean of log kappa and its variance (anchors > 0).
+  double anchor_mean() const;
+  double anchor_var() const;
 
   LearningParams params_;
   double prior_var_;

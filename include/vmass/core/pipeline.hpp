@@ -49,6 +49,7 @@
 #include "vmass/core/longitudinal_extractor.hpp"
 #include "vmass/core/pair_term_sensitivity.hpp"
 #include "vmass/core/rls_estimator.hpp"
+#include "vmass/core/static_anchor.hpp"
 #include "vmass/core/static_initializer.hpp"
 #include "vmass/core/supervisor.hpp"
 #include "vmass/core/vehicle_params.hpp"
@@ -147,6 +148,9 @@ struct PipelineSnapshot {
   bool gear_masses_saved = true;
   GearMassesState gear_masses;
   KnownMass known_mass;
+  /// The current load's static anchor's evidence so far (taken at the next power cycle).
+  bool static_anchor_pending = false;
+  AnchorObservation static_anchor;
   double pair_scale = 1.0;  ///< the scale the current belief's pairs were divided by
 };
 
@@ -198,7 +202,8 @@ class Pipeline {
   const LearntGearMasses& gear_masses() const { return gear_masses_; }
   /// What the learnt gear masses would be if the drive ended now (its gears' evidence taken).
   LearntGearMasses gear_masses_if_ended() const;
-  /// What the learnt scale would be if the drive ended now (the known mass's evidence taken).
+  /// What the learnt scale would be if the drive ended now (the known mass's or the static
+  /// anchor's evidence taken).
   LearntScale learnt_scale_if_ended() const;
 
  private:
@@ -207,6 +212,14 @@ class Pipeline {
   void restart(const MassPrior& prior, StatusReason reason);
   /// The known mass's evidence into the learnt scale (if it has any), and the known mass ends.
   void end_known_mass();
+  /// The load's standstill reading anchors the learnt scale from now (StaticAnchor).
+  void begin_static_anchor(const StaticMass& static_mass);
+  /// The static anchor's evidence into the learnt scale (if it has any), and the anchor ends.
+  void end_static_anchor();
+  /// The learnt scale with the static anchor's evidence so far taken.
+  LearntScale learnt_with_anchor() const;
+  /// The static anchor's evidence so far; false when it has none.
+  bool anchor_observation(AnchorObservation* out) const;
   /// The current load's gears' evidence into the learnt gear masses; the load's sums restart.
   void end_gear_evidence();
   /// What is learnt about each gear's rotating mass, into the estimate.
@@ -306,6 +319,9 @@ class Pipeline {
   /// never corrects the next load of the same drive (a tractor's solo stretch its coupled one).
   LearntGearMasses applied_gear_masses_;
   long published_gear_revision_ = -1;  ///< gear_masses_'s revision in estimate_
+  /// The current load's standstill reading, while it holds; a snapshot saves its evidence so
+  /// far, which a restored pipeline holds until the load ends.
+  StaticAnchor static_anchor_;
   KnownMass known_mass_;
   KnownMass declared_;       ///< active: declared, taken at the next step
   double pair_scale_ = 1.0;  ///< kappa the belief's longitudinal pairs are divided by

@@ -96,6 +96,9 @@ class StaticInitializer {
   /// E[1/q] and Std[1/q] of the payload-position prior (see the header).
   double payload_factor_mean() const { return factor_mean_; }
   double payload_factor_std() const { return factor_std_; }
+  /// The std every reading shares: the kerb mass (fuel, options), max(prior_std_kg,
+  /// prior_std_fraction_of_empty x M_idle).
+  double base_std_kg() const;
 
   bool initialised() const { return reference_.has_value(); }
   /// The next settled window becomes the reference without a comparison (the load the
@@ -111,8 +114,6 @@ class StaticInitializer {
   /// A settled window (mean deflection, its spread, the grade) against the reference: the mass
   /// when it is new (a first window or a load change).
   std::optional<StaticMass> judge_window(TimeUs time_us, double mean, double spread, double grade);
-
-  double base_std_kg() const;
 
   VehicleParams vehicle_;
   SuspensionParams suspension_;

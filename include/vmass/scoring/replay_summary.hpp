@@ -56,12 +56,14 @@ class ReplaySummary {
     long reinitialisations = 0;
     VerdictTally verdicts;  ///< every block's verdict at every tick (add_events)
     /// What is learnt about the car after this drive (Pipeline::learnt_scale_if_ended()): set
-    /// by set_learnt() when the run declared a known mass or restored something learnt.
+    /// by set_learnt() when the run declared a known mass, restored something learnt or had a
+    /// standstill reading of its load that its pairs could anchor the scale on.
     struct Learnt {
       double scale = 1.0;
       double relative_std = 0.0;
       long evidence = 0;
       long changes = 0;
+      long anchors = 0;      ///< drives whose standstill reading anchored it (StaticAnchor)
       int known_masses = 0;  ///< declared during the run
       /// The learnt gear masses (Pipeline::gear_masses_if_ended()): drives of evidence, and
       /// per gear (index gear - 1) the correction of its rotating mass and its std, kg.
