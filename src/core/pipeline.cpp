@@ -692,6 +692,7 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   estimate_.learnt_scale_std = learnt_.relative_std();
   estimate_.learnt_evidence = learnt_.state().evidence;
   estimate_.learnt_changes = learnt_.state().changes;
+  estimate_.learnt_anchors = learnt_.state().anchors;
   estimate_.known_mass = known_mass_.active;
   publish_learnt_gears();
   refresh_belief();

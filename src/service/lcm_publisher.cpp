@@ -231,6 +231,7 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->learnt_scale_std = s.has_tick ? finite_or_zero(e.learnt_scale_std) : 0.0;
   out->learnt_evidence = s.has_tick ? e.learnt_evidence : 0;
   out->learnt_changes = s.has_tick ? e.learnt_changes : 0;
+  out->learnt_anchors = s.has_tick ? e.learnt_anchors : 0;
   out->known_mass = s.has_tick && e.known_mass;
   learnt_gears_to_lcm(s.has_tick ? e : Estimate{}, out);
   out->commands_received = s.commands_received;

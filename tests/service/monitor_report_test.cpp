@@ -91,6 +91,15 @@ TEST(MonitorReport, WhatIsLearntAboutTheCar) {
   EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
                 .find("\nlearnt    scale: datasheet (no known mass yet)\ndaemon    running"),
             std::string::npos);
+  // The deflection sensor's standstill readings anchored it: no known mass yet.
+  s.learnt_scale = 0.9812;
+  s.learnt_scale_std = 0.0231;
+  s.learnt_anchors = 3;
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
+                .find("\nlearnt    scale 0.981 +- 2.3 % from 3 standstill readings (no known mass "
+                      "yet)\n"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
   s.learnt_scale = 1.0314;
   s.learnt_scale_std = 0.0123;
   s.learnt_evidence = 2;

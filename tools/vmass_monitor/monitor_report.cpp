@@ -114,7 +114,11 @@ void gear_items(const vmass::status_t& s, std::vector<std::string>* items) {
 /// and the changes it saw.
 std::string learnt_lines(const vmass::status_t& s) {
   std::vector<std::string> items;
-  if (s.learnt_evidence <= 0) {
+  if (s.learnt_evidence <= 0 && s.learnt_anchors > 0) {
+    items.push_back(format(
+        "scale %.3f +- %.1f %% from %lld standstill reading%s (no known mass yet)", s.learnt_scale,
+        100.0 * s.learnt_scale_std, ll(s.learnt_anchors), s.learnt_anchors == 1 ? "" : "s"));
+  } else if (s.learnt_evidence <= 0) {
     items.emplace_back("scale: datasheet (no known mass yet)");
   } else {
     items.push_back(format("scale %.3f +- %.1f %% from %lld drive%s on a known mass",
