@@ -168,6 +168,19 @@ nlohmann::json drive_json(const LifetimeSpec& spec, const sim::DrawnVehicle& veh
   return j;
 }
 
+/// The drive simulated on the vehicle as it is then (its tyres); "" or why not.
+std::string simulate_drive(const sim::DrawnVehicle& vehicle, const sim::LifetimeDrive& drive,
+                           sim::Realism realism, sim::PopulationRun* run,
+                           sim::SimulationResult* result) {
+  if (auto m = sim::make_population_run(vehicle, drive.scenario, drive.seed, realism, run,
+                                        &drive.payload);
+      !m.empty()) {
+    return m;
+  }
+  sim::fit_tyres(drive.tyre_radius_factor, &run->physics.vehicle);  // the config keeps its radius
+  return sim::simulate(run->physics, run->simulation, result);
+}
+
 }  // namespace
 
 LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_dir) {
@@ -182,15 +195,8 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
           : spec.plan;
   for (const sim::LifetimeDrive& drive : plan) {
     sim::PopulationRun run;
-    if (auto m = sim::make_population_run(vehicle, drive.scenario, drive.seed, spec.realism, &run,
-                                          &drive.payload);
-        !m.empty()) {
-      out.error = m;
-      return out;
-    }
-    sim::fit_tyres(drive.tyre_radius_factor, &run.physics.vehicle);  // the config keeps its radius
     sim::SimulationResult result;
-    if (auto m = sim::simulate(run.physics, run.simulation, &result); !m.empty()) {
+    if (auto m = simulate_drive(vehicle, drive, spec.realism, &run, &result); !m.empty()) {
       out.error = m;
       return out;
     }

@@ -368,6 +368,24 @@ int run_lifetimes(const std::vector<vmass::suite::LifetimeSpec>& specs, int jobs
       });
 }
 
+// The lifetime mode's options (--lifetime and what only it reads).
+void add_lifetime_options(CLI::App& app, Options* o) {
+  app.add_option("--lifetime", o->lifetime_drives,
+                 "drives per life: each vehicle drive after drive through the state file")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--lives", o->lives, "lives per vehicle (--lifetime)")->check(CLI::Range(1, 100));
+  app.add_option("--known-mass-drives", o->known_mass_drives,
+                 "--lifetime: also carry every variant with its true mass declared as a known "
+                 "mass at the start of these drives (e.g. 1)");
+  app.add_option("--tyre-change-drive", o->tyre_change_drive,
+                 "--lifetime: new tyres (radius 1-3 % larger, the config's unchanged) before "
+                 "this drive of every life");
+  app.add_option("--vehicle-ids", o->vehicle_ids,
+                 "--lifetime: these vehicles (CLASS-SEED,...) instead of the population's");
+  app.add_option("--keep-dir", o->keep_dir,
+                 "--lifetime: keep each variant's logs, config and state files here");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -396,20 +414,7 @@ int main(int argc, char** argv) {
   app.add_option("--runs", o.runs,
                  "only these runs, VEHICLE:SCENARIO:SEED,... (VEHICLE nominal: "
                  "the ablation's car)");
-  app.add_option("--lifetime", o.lifetime_drives,
-                 "drives per life: each vehicle drive after drive through the state file")
-      ->check(CLI::Range(1, 1000));
-  app.add_option("--lives", o.lives, "lives per vehicle (--lifetime)")->check(CLI::Range(1, 100));
-  app.add_option("--known-mass-drives", o.known_mass_drives,
-                 "--lifetime: also carry every variant with its true mass declared as a known "
-                 "mass at the start of these drives (e.g. 1)");
-  app.add_option("--tyre-change-drive", o.tyre_change_drive,
-                 "--lifetime: new tyres (radius 1-3 % larger, the config's unchanged) before "
-                 "this drive of every life");
-  app.add_option("--vehicle-ids", o.vehicle_ids,
-                 "--lifetime: these vehicles (CLASS-SEED,...) instead of the population's");
-  app.add_option("--keep-dir", o.keep_dir,
-                 "--lifetime: keep each variant's logs, config and state files here");
+  add_lifetime_options(app, &o);
   app.add_option("--jobs", o.jobs, "threads (default: all cores)");
   app.add_option("--out", o.out, "JSON lines output");
   app.add_flag("--list-scenarios", list, "list the population scenarios and exit");
