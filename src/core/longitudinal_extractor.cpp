@@ -44,6 +44,18 @@ std::string_view accel_source_name(AccelSource s) {
   return "unknown";
 }
 
+std::string_view rotating_accel_source_name(RotatingAccelSource s) {
+  switch (s) {
+    case RotatingAccelSource::kAuto:
+      return "auto";
+    case RotatingAccelSource::kWheelSpeed:
+      return "wheel_speed";
+    case RotatingAccelSource::kAccelerometer:
+      return "accelerometer";
+  }
+  return "unknown";
+}
+
 std::string LongitudinalParams::validate() const {
   ParamCheck c("estimator.longitudinal");
   c.positive("max_abs_accel_y_mps2", max_abs_accel_y_mps2);
@@ -238,6 +250,7 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
 
 LongitudinalExtractor::Record LongitudinalExtractor::filtered_record(const Sample& s,
                                                                      const TickInputs& in) {
+  speed_refresh_.observe(s.time_us, s.speed_mps);
   const double speed = speed_filter_.step(s.speed_mps);
   const double wheel_accel = has_previous_speed_ ? (speed - previous_speed_) * tick_rate_hz_ : 0.0;
   previous_speed_ = speed;
@@ -263,8 +276,28 @@ double LongitudinalExtractor::rotating_mass_kg(const Record& now) const {
              : gear_kg;
 }
 
+bool LongitudinalExtractor::rotating_from_wheel_speed() const {
+  switch (params_.rotating_accel_source) {
+    case RotatingAccelSource::kWheelSpeed:
+      return true;
+    case RotatingAccelSource::kAccelerometer:
+      return false;
+    case RotatingAccelSource::kAuto:
+      break;
+  }
+  return !speed_refresh_.coarse();
+}
+
+double LongitudinalExtractor::rotating_delta_accel(const Record& now, const Record& then) const {
+  if (rotating_from_wheel_speed()) return now.wheel_accel_mps2 - then.wheel_accel_mps2;
+  // The body moves with the wheels while they grip; its pitch is taken out as the pair's own is.
+  const double imu = now.accel_x_mps2 - then.accel_x_mps2;
+  return params_.accel_source == AccelSource::kCalibrated ? imu / accel_scale()
+                                                          : imu / pitch_scale_;
+}
+
 double LongitudinalExtractor::rotating_n(const Record& now, const Record& then) const {
-  return rotating_mass_kg(now) * (now.wheel_accel_mps2 - then.wheel_accel_mps2);
+  return rotating_mass_kg(now) * rotating_delta_accel(now, then);
 }
 
 void LongitudinalExtractor::fill_y_by_lag(const Record& now, const Record& then) {
@@ -357,7 +390,7 @@ LongitudinalExtractor::PairTerms LongitudinalExtractor::pair_terms(const Record&
                               vehicle_.torque_converter_map_accuracy_fraction * t.converter_n);
   t.gear = now.gear;
   t.rotating_mass_kg = rotating_mass_kg(now);
-  t.wheel_delta_accel_mps2 = now.wheel_accel_mps2 - then.wheel_accel_mps2;
+  t.wheel_delta_accel_mps2 = rotating_delta_accel(now, then);
   return t;
 }
 

@@ -125,6 +125,23 @@ TEST(Config, TheProvisionalLagSpreadIsReadAndChecked) {
       << bad.error;
 }
 
+TEST(Config, TheRotatingTermsSourceIsReadAndChecked) {
+  const std::string section = "estimator:\n  longitudinal:\n    rotating_accel_source: ";
+  EXPECT_EQ(load_config_text(kMinimal, "default.yaml")
+                .config->pipeline.estimator.longitudinal.rotating_accel_source,
+            RotatingAccelSource::kAuto);
+  const ConfigLoad ok =
+      load_config_text(std::string(kMinimal) + section + "accelerometer\n", "rot.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_EQ(ok.config->pipeline.estimator.longitudinal.rotating_accel_source,
+            RotatingAccelSource::kAccelerometer);
+  const ConfigLoad bad = load_config_text(std::string(kMinimal) + section + "gps\n", "rot.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("rotating_accel_source"), std::string::npos) << bad.error;
+  EXPECT_NE(bad.error.find("'auto', 'wheel_speed' or 'accelerometer'"), std::string::npos)
+      << bad.error;
+}
+
 TEST(Config, RawSectionsAreKeptForTheirLayers) {
   const ConfigLoad c = load_config_text(
       std::string(kMinimal) + "lcm:\n  url: memq://\ncan:\n  dbc: car.dbc\n", "raw.yaml");

@@ -147,6 +147,53 @@ TEST(LongitudinalExtractor, TheCalibratedSourceLearnsTheAccelerometersScale) {
   EXPECT_NEAR(batch_fit(pairs)(0), drive.mass_kg, 0.01 * drive.mass_kg);
 }
 
+// The speed as an instrument cluster shows it: refreshed every 100 ms in 0.5 km/h steps,
+// 0.2 s late.
+std::vector<Sample> with_cluster_speed(std::vector<Sample> samples) {
+  constexpr double kStepMps = 0.5 / 3.6;
+  constexpr std::size_t kLateTicks = 20, kFrameTicks = 10;
+  std::vector<double> true_speed;
+  for (const Sample& s : samples) true_speed.push_back(s.speed_mps);
+  double shown = true_speed.front();
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (i % kFrameTicks == 0 && i >= kLateTicks) {
+      shown = std::round(true_speed[i - kLateTicks] / kStepMps) * kStepMps;
+    }
+    samples[i].set(Input::kSpeed, shown);
+  }
+  return samples;
+}
+
+// Given a truck's first gear (rotating masses 80 % of the vehicle's own) and only the cluster's
+// speed, that speed's derivative misses part of the wheels' acceleration change and the mass
+// reads high; the extractor sees the signal is coarse and takes the rotating term from the
+// accelerometer (rotating_accel_source: auto), and the mass comes out right. With an ESC's speed
+// it keeps the wheel speed.
+TEST(LongitudinalExtractor, ACoarseSpeedSignalLeavesTheRotatingTermToTheAccelerometer) {
+  VehicleParams v = testing::test_vehicle();
+  LongitudinalDrive drive;
+  drive.rotating_mass_kg = 0.8 * drive.mass_kg;
+  v.rotating_mass_kg = drive.rotating_mass_kg;
+  const auto esc = testing::longitudinal_samples(drive, v, 0.0, 120.0, 15.0, 0.01);
+  const auto cluster = with_cluster_speed(esc);
+
+  const auto auto_pairs = extract(cluster, v, LongitudinalParams{}, DifferencingParams{});
+  ASSERT_GT(auto_pairs.size(), 3000u);
+  EXPECT_NEAR(batch_fit(auto_pairs)(0), drive.mass_kg, 0.01 * drive.mass_kg);
+
+  LongitudinalParams wheel_speed;
+  wheel_speed.rotating_accel_source = RotatingAccelSource::kWheelSpeed;
+  const auto late_pairs = extract(cluster, v, wheel_speed, DifferencingParams{});
+  EXPECT_GT(std::abs(batch_fit(late_pairs)(0) - drive.mass_kg), 0.05 * drive.mass_kg);
+
+  // The ESC's speed: exactly the wheel speed's pairs.
+  const auto esc_auto = extract(esc, v, LongitudinalParams{}, DifferencingParams{});
+  const auto esc_wheel = extract(esc, v, wheel_speed, DifferencingParams{});
+  ASSERT_EQ(esc_auto.size(), esc_wheel.size());
+  for (std::size_t i = 0; i < esc_auto.size(); ++i) EXPECT_EQ(esc_auto[i].y_n, esc_wheel[i].y_n);
+  EXPECT_NEAR(batch_fit(esc_auto)(0), drive.mass_kg, 0.005 * drive.mass_kg);
+}
+
 TEST(LongitudinalExtractor, GatesOfTableII) {
   const VehicleParams v = testing::test_vehicle();
   LongitudinalExtractor ex(v, LongitudinalParams{}, DifferencingParams{});

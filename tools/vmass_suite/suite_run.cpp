@@ -158,6 +158,10 @@ EstimatorResult run_pipeline(const std::string& name, Pipeline& pipeline,
   r.initial_mass_kg = e.initial_mass_kg;
   r.identified_lag_s = pipeline.longitudinal().lag().lag_s();
   r.accel_noise_mps2 = pipeline.longitudinal().accel_noise_mps2();
+  r.rotating_accel =
+      pipeline.longitudinal().rotating_from_wheel_speed() ? "wheel_speed" : "accelerometer";
+  const double refresh_s = pipeline.longitudinal().speed_refresh().mean_interval_s();
+  if (std::isfinite(refresh_s)) r.speed_refresh_s = refresh_s;
   return r;
 }
 

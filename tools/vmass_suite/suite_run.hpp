@@ -59,6 +59,10 @@ struct EstimatorResult {
   double initial_mass_kg = AccuracyResult::kNaN;   ///< vmass: the last prior (static or empty)
   double identified_lag_s = AccuracyResult::kNaN;  ///< vmass: the longitudinal block's lag
   double accel_noise_mps2 = AccuracyResult::kNaN;  ///< vmass: its measured noise
+  /// vmass: what the rotating term read at the end ("wheel_speed" or "accelerometer"), and the
+  /// speed signal's mean interval between changes (SpeedRefresh; NaN before a change).
+  std::string rotating_accel;
+  double speed_refresh_s = AccuracyResult::kNaN;
   scoring::VerdictTally verdicts;  ///< vmass: every block's verdict at every tick (why no pair)
 };
 

@@ -62,7 +62,7 @@ inline constexpr std::array<Field<LoadChangeParams>, 8> kLoadChangeFields{{
     {"filter_cutoff_hz", &LoadChangeParams::filter_cutoff_hz},
 }};
 
-inline constexpr std::array<Field<LongitudinalParams>, 16> kLongitudinalFields{{
+inline constexpr std::array<Field<LongitudinalParams>, 17> kLongitudinalFields{{
     {"enabled", &LongitudinalParams::enabled},
     {"max_abs_accel_y_mps2", &LongitudinalParams::max_abs_accel_y_mps2},
     {"min_abs_delta_accel_x_mps2", &LongitudinalParams::min_abs_delta_accel_x_mps2},
@@ -79,6 +79,7 @@ inline constexpr std::array<Field<LongitudinalParams>, 16> kLongitudinalFields{{
     {"subtract_aero", &LongitudinalParams::subtract_aero},
     {"accel_source", &LongitudinalParams::accel_source},
     {"scale_memory_s", &LongitudinalParams::scale_memory_s},
+    {"rotating_accel_source", &LongitudinalParams::rotating_accel_source},
 }};
 
 inline constexpr std::array<Field<LagParams>, 7> kLagFields{{

@@ -35,7 +35,7 @@ namespace vmass {
 template <class S>
 using FieldMember = std::variant<double S::*, int S::*, long S::*, bool S::*, std::string S::*,
                                  std::vector<double> S::*, std::vector<int> S::*,
-                                 RegressorType S::*, AccelSource S::*>;
+                                 RegressorType S::*, AccelSource S::*, RotatingAccelSource S::*>;
 
 template <class S>
 struct Field {
@@ -64,6 +64,14 @@ struct EnumNames<AccelSource> {
   static constexpr std::array<AccelSource, 3> kAll{
       AccelSource::kAccelerometer, AccelSource::kWheelSpeed, AccelSource::kCalibrated};
   static std::string_view name(AccelSource s) { return accel_source_name(s); }
+};
+
+template <>
+struct EnumNames<RotatingAccelSource> {
+  static constexpr std::array<RotatingAccelSource, 3> kAll{RotatingAccelSource::kAuto,
+                                                           RotatingAccelSource::kWheelSpeed,
+                                                           RotatingAccelSource::kAccelerometer};
+  static std::string_view name(RotatingAccelSource s) { return rotating_accel_source_name(s); }
 };
 
 namespace field_detail {
@@ -101,6 +109,9 @@ inline void read_value(YamlReader& r, const char* key, RegressorType* out) {
   read_enum(r, key, out);
 }
 inline void read_value(YamlReader& r, const char* key, AccelSource* out) { read_enum(r, key, out); }
+inline void read_value(YamlReader& r, const char* key, RotatingAccelSource* out) {
+  read_enum(r, key, out);
+}
 
 template <class T>
 void emit_value(YAML::Emitter& out, const T& value) {
@@ -117,6 +128,9 @@ inline void emit_value(YAML::Emitter& out, RegressorType t) {
 }
 inline void emit_value(YAML::Emitter& out, AccelSource s) {
   out << std::string(EnumNames<AccelSource>::name(s));
+}
+inline void emit_value(YAML::Emitter& out, RotatingAccelSource s) {
+  out << std::string(EnumNames<RotatingAccelSource>::name(s));
 }
 
 }  // namespace field_detail

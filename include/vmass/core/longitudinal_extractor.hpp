@@ -7,7 +7,9 @@
 // so the pair is  y = dF - m_rot(gear) dv',  phi = [da_x, 1]  and theta[0] is the mass M.
 // The accelerometer reads specific force, so the grade cancels exactly in M a_x = F - resistances;
 // the rotating parts turn with the wheels, so their inertia multiplies the wheel-speed
-// derivative, not a_x.
+// derivative, not a_x. Where the speed signal refreshes too seldom for its derivative to follow
+// the wheels within a pair (an instrument cluster's displayed speed, SpeedRefresh), a_x stands
+// in for it (rotating_accel_source).
 //
 // What makes the differenced model hold on real signals:
 //   - the same low-pass (estimator.filter_cutoff_hz) on F, a_x and v' before differencing over
@@ -50,6 +52,7 @@
 #include "vmass/core/low_pass_filter.hpp"
 #include "vmass/core/overall_ratio_tracker.hpp"
 #include "vmass/core/sample.hpp"
+#include "vmass/core/speed_refresh.hpp"
 #include "vmass/core/speed_signal_scale.hpp"
 #include "vmass/core/vehicle_params.hpp"
 
@@ -63,10 +66,19 @@ enum class AccelSource : std::uint8_t {
 };
 std::string_view accel_source_name(AccelSource s);
 
+/// What the rotating term's change of the wheels' acceleration is measured with.
+enum class RotatingAccelSource : std::uint8_t {
+  kAuto = 0,       ///< the wheel speed until SpeedRefresh finds it coarse, then the accelerometer
+  kWheelSpeed,     ///< the derivative of the wheel speed: it turns with the wheels
+  kAccelerometer,  ///< a_x (pitch-corrected as the pair's own): for a coarse or late speed
+};
+std::string_view rotating_accel_source_name(RotatingAccelSource s);
+
 struct LongitudinalParams {
   bool enabled = true;
   AccelSource accel_source = AccelSource::kAccelerometer;
   double scale_memory_s = 120.0;  ///< kCalibrated: memory of the scale, s of excited pairs
+  RotatingAccelSource rotating_accel_source = RotatingAccelSource::kAuto;
   double max_abs_accel_y_mps2 = 0.5;
   double min_abs_delta_accel_x_mps2 = 0.02;  ///< floor of the excitation gate
   double min_abs_delta_force_n = 10.0;       ///< floor of the excitation gate
@@ -124,6 +136,10 @@ class LongitudinalExtractor {
   void set_reference_mass(double mass_kg) { reference_mass_kg_ = mass_kg; }
 
   const LagEstimator& lag() const { return lag_; }
+  /// How often the speed signal changes (whether its derivative can carry the rotating term).
+  const SpeedRefresh& speed_refresh() const { return speed_refresh_; }
+  /// The rotating term reads the wheel speed's derivative now (else the accelerometer).
+  bool rotating_from_wheel_speed() const;
   /// kCalibrated: the accelerometer's scale against the wheel speed, 1 + g k_pitch (1 otherwise).
   double accel_scale() const;
   /// Robust scale of the residual dF - M_ref da at the horizon, N.
@@ -202,7 +218,9 @@ class LongitudinalExtractor {
   Extraction finish(const PairTerms& terms, double y, Extraction out) const;
   /// m_rot of the record's gear (or derived-ratio plateau), kg.
   double rotating_mass_kg(const Record& now) const;
-  /// m_rot(gear) dv' over the window, N.
+  /// The change of the wheels' acceleration over the window, from that source.
+  double rotating_delta_accel(const Record& now, const Record& then) const;
+  /// m_rot(gear) times that change, N.
   double rotating_n(const Record& now, const Record& then) const;
   void keep_pending(const PairTerms& terms);
 
@@ -242,6 +260,7 @@ class LongitudinalExtractor {
   OverallRatioTracker ratio_tracker_;
   ConverterMap converter_;
   SpeedSignalScale speed_scale_;
+  SpeedRefresh speed_refresh_;  ///< kept through restarts: a property of the bus
 };
 
 }  // namespace vmass

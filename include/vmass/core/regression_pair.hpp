@@ -48,7 +48,8 @@ struct RegressionPair {
   int gear = 0;
   double rotating_mass_kg = 0.0;
   /// Longitudinal: the wheels' differenced acceleration dv', m/s^2, that the rotating term
-  /// multiplies (a learnt correction of the gear's rotating mass is subtracted times it).
+  /// multiplies (a learnt correction of the gear's rotating mass is subtracted times it): the
+  /// wheel speed's, or the accelerometer's where the speed signal is too coarse.
   double wheel_delta_accel_mps2 = 0.0;
 };
 
