@@ -138,6 +138,7 @@ ReplayOutcome replay_log(const Config& config, const std::string& log, const Rep
   // row per tick), as with vmass-replay --log and at vmassd's stop.
   if (step.flush()) summary.finish(step.pipeline().estimate());
   scoring::record_learnt(step.pipeline(), static_cast<int>(known.size()), &summary);
+  scoring::record_speed_signal(step.pipeline(), &summary);
   out.summary_json =
       scoring::replay_json(summary.result(), std::string(step.pipeline().regressor().name()));
   save_state(o, step, run, &out);

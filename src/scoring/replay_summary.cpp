@@ -49,6 +49,7 @@ ReplaySummary::Result ReplaySummary::result() const {
   r.reinitialisations = reinitialisations_;
   r.verdicts = verdicts_;
   r.learnt = learnt_;
+  r.coarse_speed_interval_s = coarse_speed_interval_s_;
   if (!has_last_) return r;
   r.duration_s = to_seconds(last_.time_us - first_us_);
   r.final_estimate = last_;
@@ -93,6 +94,13 @@ void record_learnt(const Pipeline& pipeline, int known_masses, ReplaySummary* su
     l.gear_std_kg.push_back(gears.correction_std_kg(g));
   }
   summary->set_learnt(l);
+}
+
+void record_speed_signal(const Pipeline& pipeline, ReplaySummary* summary) {
+  const LongitudinalExtractor& block = pipeline.longitudinal();
+  if (block.speed_refresh().coarse() && !block.rotating_from_wheel_speed()) {
+    summary->set_coarse_speed(block.speed_refresh().mean_interval_s());
+  }
 }
 
 }  // namespace vmass::scoring

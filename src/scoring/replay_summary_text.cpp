@@ -163,6 +163,11 @@ std::string replay_table(const ReplaySummary::Result& r, const std::string& esti
     const std::string why = r.verdicts.describe_refusals(static_cast<Block>(b));
     if (!why.empty()) out << "  ticks without pair  " << why << " (verdicts)\n";
   }
+  if (r.coarse_speed_interval_s) {
+    out << "speed signal         changes every " << fixed(*r.coarse_speed_interval_s, 2)
+        << " s as the speed changes: too coarse for its derivative, the rotating term read the "
+           "accelerometer\n";
+  }
   if (r.learnt) learnt_rows(*r.learnt, out);
   if (r.true_mass_kg) truth_rows(r, out);
   return out.str();
@@ -176,6 +181,11 @@ std::string replay_json(const ReplaySummary::Result& r, const std::string& estim
   j["has_estimate"] = r.has_estimate;
   estimate_fields(r, &j);
   truth_fields(r, &j);
+  if (r.coarse_speed_interval_s) {
+    j["speed_signal"] = {{"coarse", true},
+                         {"mean_change_interval_s", json::fixed(*r.coarse_speed_interval_s, 3)},
+                         {"rotating_accel", "accelerometer"}};
+  }
   if (r.learnt) {
     j["learnt"] = {{"scale", json::fixed(r.learnt->scale, 6)},
                    {"scale_std", json::fixed(r.learnt->relative_std, 6)},

@@ -206,6 +206,22 @@ TEST(ReplaySummary, AScaleFromStandstillReadingsSaysSo) {
   EXPECT_EQ(j["learnt"]["evidence"], 0) << j;
 }
 
+TEST(ReplaySummary, ACoarseSpeedSignalIsNamed) {
+  ReplaySummary summary(std::nullopt);
+  summary.add(refined(0, 21000.0, 100, 130));
+  EXPECT_EQ(table_of(summary, "bayes").find("speed signal"), std::string::npos);
+  EXPECT_FALSE(json_of(summary, "bayes").contains("speed_signal"));
+  summary.set_coarse_speed(0.3124);
+  const std::string table = table_of(summary, "bayes");
+  EXPECT_NE(table.find("speed signal         changes every 0.31 s as the speed changes: too "
+                       "coarse for its derivative, the rotating term read the accelerometer\n"),
+            std::string::npos)
+      << table;
+  const json::Json j = json_of(summary, "bayes");
+  EXPECT_EQ(j["speed_signal"]["coarse"], true) << j;
+  EXPECT_EQ(j["speed_signal"]["rotating_accel"], "accelerometer") << j;
+}
+
 TEST(ReplaySummary, JsonHasNoMassBeforeAnyEstimate) {
   ReplaySummary summary(std::nullopt);
   summary.add(no_prior_yet(0));

@@ -288,6 +288,7 @@ int replay_one_input(const Options& o, const vmass::Config& config,
   // row per tick; the summary reports the flushed estimate).
   if (step.flush()) summary.finish(step.pipeline().estimate());
   vmass::scoring::record_learnt(step.pipeline(), static_cast<int>(known.size()), &summary);
+  vmass::scoring::record_speed_signal(step.pipeline(), &summary);
   if (writer && !writer->close()) {
     std::cerr << "vmass-replay: " << csv_path << ": write failed\n";
     return kExitFailure;

@@ -72,9 +72,13 @@ class ReplaySummary {
       std::vector<double> gear_std_kg;
     };
     std::optional<Learnt> learnt;
+    /// The speed signal was found too coarse for its derivative (SpeedRefresh): its mean
+    /// interval between changes, s; the rotating term read the accelerometer instead.
+    std::optional<double> coarse_speed_interval_s;
   };
   Result result() const;
   void set_learnt(const Result::Learnt& learnt) { learnt_ = learnt; }
+  void set_coarse_speed(double interval_s) { coarse_speed_interval_s_ = interval_s; }
 
  private:
   void check_tolerances(const Estimate& e);
@@ -92,6 +96,7 @@ class ReplaySummary {
   WithinTracker within_{kReplayTolerances};
   VerdictTally verdicts_;
   std::optional<Result::Learnt> learnt_;
+  std::optional<double> coarse_speed_interval_s_;
   bool any_mass_ = false;
   TimeUs first_mass_us_ = 0;
 };
@@ -100,5 +105,8 @@ class ReplaySummary {
 /// gear_masses_if_ended()) into `summary`, when a known mass was declared (`known_masses`) or
 /// anything is learnt: vmass-replay and the Python binding report the same.
 void record_learnt(const Pipeline& pipeline, int known_masses, ReplaySummary* summary);
+/// Whether the drive found its speed signal too coarse for the rotating term (SpeedRefresh)
+/// into `summary`: vmass-replay and the Python binding report the same.
+void record_speed_signal(const Pipeline& pipeline, ReplaySummary* summary);
 
 }  // namespace vmass::scoring
