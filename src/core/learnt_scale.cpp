@@ -7,6 +7,12 @@
 #include "vmass/core/param_check.hpp"
 
 namespace vmass {
+namespace {
+
+/// A saved belief wider than this many times the datasheet's (plus one) is refused.
+constexpr double kMaxVarianceOverPrior = 4.0;
+
+}  // namespace
 
 std::string LearningParams::validate() const {
   ParamCheck c("estimator.learning");
@@ -17,6 +23,7 @@ std::string LearningParams::validate() const {
   c.positive("anchor_prior_std_fraction", anchor_prior_std_fraction);
   c.in_open_range("max_abs_log_scale", max_abs_log_scale, 0.0, 1.0);
   c.at_least("min_gear_evidence_pairs", static_cast<double>(min_gear_evidence_pairs), 1.0);
+  c.in_open_range("tyre_change_std_fraction", tyre_change_std_fraction, 0.0, 0.2);
   return c.message();
 }
 
@@ -46,11 +53,14 @@ double LearntScale::anchor_var() const {
   return 1.0 / state_.anchor_weight + common * common;
 }
 
-// The anchors join the belief only while no known mass informs it: their shared error (the kerb
-// mass, where the payload sits) is as large as what they measure, and a known mass measures
-// kappa without it. Joined to a known mass's belief they only pulled it towards that error
-// (cars with the sensor, drives 5-9: median 0.66 -> 0.78 %, p90 1.98 -> 2.58 %).
-bool LearntScale::anchors_join() const { return state_.anchors > 0 && state_.evidence == 0; }
+// The anchors join the belief only while no known mass informs it (none since the last tyres):
+// their shared error (the kerb mass, where the payload sits) is as large as what they measure,
+// and a known mass measures kappa without it. Joined to a known mass's belief they only pulled it
+// towards that error (cars with the sensor, drives 5-9: median 0.66 -> 0.78 %, p90 1.98 ->
+// 2.58 %).
+bool LearntScale::anchors_join() const {
+  return state_.anchors > 0 && state_.evidence_since_tyres == 0;
+}
 
 double LearntScale::log_scale() const {
   if (!anchors_join()) return state_.log_scale;
@@ -77,6 +87,25 @@ void LearntScale::drift() {
   state_.log_scale_var += params_.drift_std_per_drive * params_.drift_std_per_drive;
 }
 
+void LearntScale::tyres_changed() {
+  const double tyres2 = params_.tyre_change_std_fraction * params_.tyre_change_std_fraction;
+  // What the anchors added to the belief stays in it, as wide as it was before the widening.
+  // Never wider than the datasheet's belief with one change: a belief restore() takes, however
+  // often it is declared.
+  const double mean = log_scale();
+  const double before = log_scale_var();
+  const double var = std::max(before, std::min(before + tyres2, prior_var_ + tyres2));
+  const long tyre_changes = state_.tyre_changes;
+  const long evidence = state_.evidence;
+  const long changes = state_.changes;
+  state_ = LearntScaleState{};
+  state_.log_scale = mean;
+  state_.log_scale_var = var;
+  state_.evidence = evidence;
+  state_.changes = changes;
+  state_.tyre_changes = tyre_changes + 1;
+}
+
 void LearntScale::take(double log_scale, double variance) {
   // The normal-normal update of the belief in log kappa.
   const double gain = state_.log_scale_var / (state_.log_scale_var + variance);
@@ -96,6 +125,7 @@ ScaleEvidence LearntScale::add_evidence(double log_scale, double variance) {
     take(log_scale, variance);
     state_.pending_outlier_sign = 0;
     ++state_.evidence;
+    ++state_.evidence_since_tyres;
     return ScaleEvidence::kTaken;
   }
   // A second outlier on the same side that agrees with the first: the car changed. The belief
@@ -111,6 +141,7 @@ ScaleEvidence LearntScale::add_evidence(double log_scale, double variance) {
       state_.pending_outlier_sign = 0;
       ++state_.changes;
       ++state_.evidence;
+      ++state_.evidence_since_tyres;
       return ScaleEvidence::kChange;
     }
   }
@@ -120,6 +151,7 @@ ScaleEvidence LearntScale::add_evidence(double log_scale, double variance) {
   state_.pending_log_scale = log_scale;
   state_.pending_var = variance;
   ++state_.evidence;
+  ++state_.evidence_since_tyres;
   return ScaleEvidence::kDownweighted;
 }
 
@@ -161,10 +193,11 @@ std::string LearntScale::implausible(const LearntScaleState& s) const {
     return "learnt scale log " + std::to_string(s.log_scale) + " beyond its bound";
   }
   if (!(s.log_scale_var > 0.0) || !std::isfinite(s.log_scale_var) ||
-      s.log_scale_var > 4.0 * prior_var_ + 1.0) {
+      s.log_scale_var > kMaxVarianceOverPrior * prior_var_ + 1.0) {
     return "learnt scale variance " + std::to_string(s.log_scale_var) + " out of range";
   }
-  if (s.evidence < 0 || s.changes < 0 || s.changes > s.evidence) {
+  if (s.evidence < 0 || s.changes < 0 || s.changes > s.evidence || s.tyre_changes < 0 ||
+      s.evidence_since_tyres < 0 || s.evidence_since_tyres > s.evidence) {
     return "learnt scale counts out of range";
   }
   if (s.anchors < 0 || !(s.anchor_weight >= 0.0) || !std::isfinite(s.anchor_weight) ||

@@ -644,6 +644,17 @@ void Pipeline::reset_learnt() {
   applied_gear_masses_ = gear_masses_;
 }
 
+void Pipeline::tyres_changed() {
+  // What this load taught so far was read on the old tyres: its known mass's and its standstill
+  // reading's evidence are taken as such, before the widening (which drops the anchors). The
+  // known mass ends there: after a power cycle it may no longer be the load's (a weighbridge
+  // after the workshop is declared after this command).
+  end_known_mass();
+  end_static_anchor();
+  learnt_.tyres_changed();
+  // The scale's mean is kept, so the pairs' scale stands; the interval widens from the next tick.
+}
+
 bool Pipeline::restore_learnt(const PipelineSnapshot& s) {
   if (s.gear_masses_saved && !gear_masses_.implausible(s.gear_masses).empty()) return false;
   if (!learnt_.restore(s.learnt)) return false;

@@ -37,8 +37,13 @@ DaemonCommand checked(const vmass::command_t& msg) {
     c.kind = DaemonCommand::Kind::kResetLearnt;
     return c;
   }
+  if (msg.command == "tyres_changed") {
+    c.kind = DaemonCommand::Kind::kTyresChanged;
+    return c;
+  }
   if (msg.command != "known_mass") {
-    return refuse("unknown command '" + msg.command.substr(0, 40) + "' (known_mass, reset_learnt)");
+    return refuse("unknown command '" + msg.command.substr(0, 40) +
+                  "' (known_mass, reset_learnt, tyres_changed)");
   }
   if (!(std::isfinite(msg.mass_kg) && msg.mass_kg > 0.0) ||
       !(std::isfinite(msg.mass_std_kg) && msg.mass_std_kg > 0.0)) {
@@ -83,6 +88,10 @@ std::string apply(const DaemonCommand& c, runtime::TickStep& step) {
       step.reset_learnt();
       return "accepted: what was learnt about the car is forgotten (back to the config's "
              "datasheet values)";
+    case DaemonCommand::Kind::kTyresChanged:
+      step.tyres_changed();
+      return "accepted: new tyres - the learnt scale widens by the rolling radius's uncertainty "
+             "until a known mass or the standstill readings teach it again";
     case DaemonCommand::Kind::kKnownMass:
       if (!step.declare_known_mass(c.mass_kg, c.std_kg)) {
         return "refused: known mass " + kg(c.mass_kg) +

@@ -18,7 +18,7 @@ namespace vmass::service::daemon {
 struct Shared;
 
 struct DaemonCommand {
-  enum class Kind : std::uint8_t { kKnownMass, kResetLearnt, kRefused };
+  enum class Kind : std::uint8_t { kKnownMass, kResetLearnt, kTyresChanged, kRefused };
   std::int64_t utime = 0;  ///< the command's id (its sender's clock)
   Kind kind = Kind::kRefused;
   double mass_kg = 0.0;

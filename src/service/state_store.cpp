@@ -18,7 +18,9 @@ namespace vmass::service {
 namespace {
 
 constexpr const char* kMagic = "vmass-state";
-constexpr int kVersion = 5;
+constexpr int kVersion = 6;
+/// Still read: all but the tyre changes (none; every known mass counts as since the tyres).
+constexpr int kVersionWithoutTyres = 5;
 constexpr int kVersionWithoutAnchors = 4;  ///< still read: all but the static anchors (none)
 /// Still read: the learnt scale; its gear masses' reference was in kg, not relative to the mass,
 /// and is not taken (the gears are learnt again).
@@ -150,6 +152,11 @@ constexpr StateField kAnchorFields[] = {
     real("static_anchor_variance", [](S& s) { return &s.static_anchor.variance; }),
     real("static_anchor_common_std", [](S& s) { return &s.static_anchor.common_std; }),
 };
+/// Format version 6: the tyre changes declared, and the known masses since the last one.
+constexpr StateField kTyreFields[] = {
+    integer("learnt_tyre_changes", [](S& s) { return &s.learnt.tyre_changes; }),
+    integer("learnt_evidence_since_tyres", [](S& s) { return &s.learnt.evidence_since_tyres; }),
+};
 static_assert(kBlockCount == 2, "kStateFields lists the counters of two blocks");
 /// Optional (files from before the grade check): "nan" or absent = unknown grade.
 constexpr const char* kGradeKey = "reference_grade_accel_mps2";
@@ -240,6 +247,7 @@ std::string format_state(const SavedState& state) {
   out += std::string("learnt_fingerprint ") + hex + "\n";
   for (const StateField& field : kLearntFields) write_field(&out, field, s);
   for (const StateField& field : kAnchorFields) write_field(&out, field, s);
+  for (const StateField& field : kTyreFields) write_field(&out, field, s);
   write_gear_masses(&out, s.gear_masses);
   std::snprintf(hex, sizeof hex, "%016" PRIx64, fnv1a(out.data(), out.size()));
   out += std::string("checksum ") + hex + "\n";
@@ -429,15 +437,15 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   if (std::string e = split_lines(text.substr(0, checksum_at), &values); !e.empty()) {
     return fail(e);
   }
-  const std::string version = values[kMagic];
-  if (version != std::to_string(kVersion) && version != std::to_string(kVersionWithoutAnchors) &&
-      version != std::to_string(kVersionKgReference) &&
-      version != std::to_string(kVersionWithoutGears) &&
-      version != std::to_string(kVersionWithoutLearnt)) {
-    return fail("not a vmass state file of format version " + std::to_string(kVersion) + ", " +
-                std::to_string(kVersionWithoutAnchors) + ", " +
-                std::to_string(kVersionKgReference) + ", " + std::to_string(kVersionWithoutGears) +
-                " or " + std::to_string(kVersionWithoutLearnt));
+  const std::string& version_text = values[kMagic];
+  int version = 0;
+  for (int known : {kVersion, kVersionWithoutTyres, kVersionWithoutAnchors, kVersionKgReference,
+                    kVersionWithoutGears, kVersionWithoutLearnt}) {
+    if (version_text == std::to_string(known)) version = known;
+  }
+  if (version == 0) {
+    return fail("not a vmass state file of format version " + std::to_string(kVersion) + " to " +
+                std::to_string(kVersionWithoutLearnt));
   }
   const ValueReader in{values};
   SavedState out;
@@ -452,10 +460,10 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
       return fail(e);
     }
   }
-  out.snapshot.learnt_saved = version != std::to_string(kVersionWithoutLearnt);
-  out.snapshot.gear_masses_saved =
-      version == std::to_string(kVersion) || version == std::to_string(kVersionWithoutAnchors);
-  const bool anchors_saved = version == std::to_string(kVersion);
+  out.snapshot.learnt_saved = version != kVersionWithoutLearnt;
+  out.snapshot.gear_masses_saved = version >= kVersionWithoutAnchors;
+  const bool anchors_saved = version >= kVersionWithoutTyres;
+  const bool tyres_saved = version >= kVersion;
   if (out.snapshot.learnt_saved) {
     std::string hex;
     if (std::string e = in.text("learnt_fingerprint", &hex); !e.empty()) return fail(e);
@@ -470,6 +478,11 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
       if (!anchors_saved) break;
       if (std::string e = read_table_field(in, field, &out.snapshot); !e.empty()) return fail(e);
     }
+    for (const StateField& field : kTyreFields) {
+      if (!tyres_saved) break;
+      if (std::string e = read_table_field(in, field, &out.snapshot); !e.empty()) return fail(e);
+    }
+    if (!tyres_saved) out.snapshot.learnt.evidence_since_tyres = out.snapshot.learnt.evidence;
   }
   if (out.snapshot.gear_masses_saved) {
     if (std::string e = read_gear_masses(in, &out.snapshot.gear_masses); !e.empty()) return fail(e);

@@ -88,6 +88,47 @@ TEST(LearntScaleTest, RestoreRefusesAStateItCouldNotHold) {
   EXPECT_NEAR(s.scale(), std::exp(0.02), 1e-12);
 }
 
+// New tyres: the radius moved by an unmeasured 1-3 %. The belief keeps its mean and widens by
+// tyre_change_std_fraction, never past the datasheet's plus one change; the standstill readings
+// taken on the old tyres are dropped, and those read since join the belief until a known mass.
+TEST(LearntScaleTest, NewTyresWidenTheBeliefAndLetTheStandstillReadingsInAgain) {
+  const LearningParams params;
+  LearntScale s(params, kPriorStd);
+  for (int i = 0; i < 3; ++i) s.add_evidence(std::log(1.03), 1e-4);
+  s.add_anchor(std::log(0.99), 4e-4, 0.01);
+  const double mean = s.log_scale();
+  const double var = s.log_scale_var();
+  EXPECT_NEAR(mean, std::log(1.03), 2e-3);  // a known mass outweighs the anchors
+
+  s.tyres_changed();
+  const double tyres = params.tyre_change_std_fraction;
+  EXPECT_DOUBLE_EQ(s.log_scale(), mean);
+  EXPECT_NEAR(s.log_scale_var(), var + tyres * tyres, 1e-12);
+  EXPECT_EQ(s.state().anchors, 0);
+  EXPECT_EQ(s.state().evidence, 3);
+  EXPECT_EQ(s.state().tyre_changes, 1);
+
+  // A reading on the new tyres joins the belief: no known mass since them.
+  s.add_anchor(std::log(1.05), 2e-4, 0.005);
+  EXPECT_GT(s.log_scale(), mean + 0.005);
+  const double joined = s.log_scale();
+  // A known mass 2 % above the old belief is no outlier now; from it on, the anchors stand aside.
+  EXPECT_EQ(s.add_evidence(std::log(1.05), 1e-4), ScaleEvidence::kTaken);
+  EXPECT_EQ(s.state().evidence_since_tyres, 1);
+  EXPECT_NE(s.log_scale(), joined);
+  EXPECT_NEAR(s.log_scale(), s.state().log_scale, 1e-15);
+
+  // Declared again and again, it stays a belief restore() takes.
+  for (int i = 0; i < 1000; ++i) s.tyres_changed();
+  EXPECT_LE(s.log_scale_var(), kPriorStd * kPriorStd + tyres * tyres + 1e-15);
+  EXPECT_EQ(s.implausible(s.state()), "");
+  LearntScaleState bad = s.state();
+  bad.evidence_since_tyres = bad.evidence + 1;
+  EXPECT_FALSE(s.restore(bad));
+  s.reset();
+  EXPECT_EQ(s.state().tyre_changes, 0);
+}
+
 // The car's force signals read 5 % high (a datasheet torque scale and rolling radius): every
 // traction pair reads 1.05 M. No deflection sensor.
 PipelineParams scaled_car() { return testing::learning_car(); }
@@ -202,6 +243,39 @@ TEST(KnownMassTest, ALoadChangeInMotionEndsTheKnownMass) {
   EXPECT_NE(after.reason, StatusReason::kKnownMass);
   EXPECT_GT(after.mass_kg, 1600.0 + 0.5 * 350.0);
   EXPECT_GE(after.ci_high_kg, 1.05 * 1950.0 - 0.05 * 1950.0);
+}
+
+// New tyres 3 % larger after a known mass: the scale the car's signals read is 1.05 x 1.03. The
+// drive after them reads 3 % high with the old scale. Declared at its start, the known mass's
+// evidence (the old tyres') is taken first and the scale then widens by the tyres' 2 %: its
+// interval holds the truth, where the undeclared one, as sure as before, does not.
+TEST(KnownMassTest, DeclaredNewTyresWidenTheIntervalThatTheOldScaleNoLongerEarns) {
+  const PipelineParams p = scaled_car();
+  Pipeline first(p);
+  ASSERT_TRUE(first.declare_known_mass(1600.0, 10.0));
+  drive(first, scaled_drive(1600.0, 0.0, 1, p.vehicle));
+  std::vector<Sample> on_new_tyres = scaled_drive(1800.0, 86400.0, 2, p.vehicle);
+  for (Sample& s : on_new_tyres) {
+    s.set(Input::kWheelTorque, 1.03 * s.wheel_torque_nm);
+    s.set(Input::kBrakePressure, 1.03 * s.brake_pressure_pa);
+  }
+  Pipeline undeclared(p);
+  ASSERT_TRUE(undeclared.restore(first.snapshot()));
+  const Estimate e1 = drive(undeclared, on_new_tyres);
+  Pipeline declared(p);
+  ASSERT_TRUE(declared.restore(first.snapshot()));
+  declared.tyres_changed();
+  EXPECT_EQ(declared.learnt_scale().state().evidence, 1);  // drive 1's, before the widening
+  EXPECT_EQ(declared.learnt_scale().state().tyre_changes, 1);
+  const Estimate e2 = drive(declared, on_new_tyres);
+  EXPECT_NEAR(e1.learnt_scale, 1.05, 0.01);
+  EXPECT_NEAR(e2.learnt_scale, e1.learnt_scale, 0.005);  // the mean is kept
+  EXPECT_GT(e2.learnt_scale_std, 1.5 * e1.learnt_scale_std);
+  EXPECT_NEAR(e1.mass_kg, 1.03 * 1800.0, 0.01 * 1800.0);
+  EXPECT_NEAR(e2.mass_kg, e1.mass_kg, 0.005 * 1800.0);
+  EXPECT_GT(e1.ci_low_kg, 1800.0);
+  EXPECT_LE(e2.ci_low_kg, 1800.0);
+  EXPECT_GE(e2.ci_high_kg, 1800.0);
 }
 
 TEST(KnownMassTest, ResetForgetsWhatWasLearnt) {

@@ -4,7 +4,8 @@
 #   - known-mass with --config: the config's URL and channels (not the defaults), the command as
 #     vmassd reads it (schema 6, utime from CLOCK_REALTIME, std 0.5 % of KG by default, the
 #     note), the answer matched by its id past a decoy for another command: exit 0, the line
-#   - reset-learnt: exit 0; a refusal: exit 1 with vmassd's words; --lcm-url over the default
+#   - reset-learnt, tyres-changed: exit 0; a refusal: exit 1 with vmassd's words; --lcm-url
+#     over the default
 #   - no answer: exit 1 after --timeout, saying whether anything publishes a status there
 #   - a bad KG: exit 2 naming it, and nothing sent
 #   ctl_test.sh VMASS_CTL FAKE_VMASSD CONFIG OUT_DIR
@@ -80,6 +81,13 @@ grep -qx "vmassd: accepted: what was learnt about the car is forgotten .*" "$out
   fail "reset-learnt printed: $(cat "$out/reset.out")"
 grep -q "^command reset_learnt schema 6 .* clock_ok 1 " "$out/accept.txt" ||
   fail "no reset_learnt received: $(cat "$out/accept.txt")"
+
+run tyres --config "$config" tyres-changed --note "new set, 205/55 R16"
+[ "$rc" = 0 ] || fail "tyres-changed: exit $rc"
+grep -qx "vmassd: accepted: new tyres - .*" "$out/tyres.out" ||
+  fail "tyres-changed printed: $(cat "$out/tyres.out")"
+grep -qx "command tyres_changed schema 6 .* clock_ok 1 note new set, 205/55 R16" \
+  "$out/accept.txt" || fail "no tyres_changed received: $(cat "$out/accept.txt")"
 
 # Refused (default channels, --lcm-url): exit 1 with vmassd's words, past an "accepted" decoy.
 run refused --lcm-url "$url_refuse" known-mass 99999 --std 20

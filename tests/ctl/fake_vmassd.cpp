@@ -66,6 +66,10 @@ class Fake {
       answer = accept ? "accepted: what was learnt about the car is forgotten (back to the "
                         "config's datasheet values)"
                       : "refused: a fake that refuses everything";
+    } else if (c->command == "tyres_changed") {
+      answer = accept ? "accepted: new tyres - the learnt scale widens by the rolling radius's "
+                        "uncertainty"
+                      : "refused: a fake that refuses everything";
     } else {
       answer = accept ? "accepted: known mass " + kg(c->mass_kg) + " kg (std " +
                             kg(c->mass_std_kg) + " kg) from the next tick"

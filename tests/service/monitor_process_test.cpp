@@ -3,9 +3,9 @@
 // --count monitor ends with exit 1 a silence limit (3 s) later, saying why; the plain live view
 // goes on, its rates falling to 0 and its report saying that no estimate came for 10 s.
 //
-// vmass-ctl with the real vmassd (issue 30), in a namespace too: a known mass is accepted (exit
-// 0, vmassd's words), an absurd one refused (exit 1); the monitor shows the datasheet scale
-// before, then the declared mass and vmassd's last answer.
+// vmass-ctl with the real vmassd (issue 30), in a namespace too: new tyres are accepted (exit 0,
+// vmassd's words), a known mass after them too, an absurd mass refused (exit 1); the monitor
+// shows the datasheet scale before, then the declared mass and vmassd's last answer.
 #include <cstdio>
 #include <regex>
 #include <sstream>
@@ -122,8 +122,11 @@ TEST_F(MonitorProcessTest, ShowsWhatVmassCtlToldVmassd) {
           " --no-restore > " + path("daemon.log") +
           " 2>&1 &\n"
           "daemon=$!\n" +
-          monitor + path("before.txt") + " 2>&1\n" + ctl +
-          " known-mass 1800 --note 'monitor process test' > " + path("known.txt") +
+          monitor + path("before.txt") + " 2>&1\n" + ctl + " tyres-changed > " + path("tyres.txt") +
+          " 2>&1\n"
+          "echo $? > " +
+          path("tyres.rc") + "\n" + ctl + " known-mass 1800 --note 'monitor process test' > " +
+          path("known.txt") +
           " 2>&1\n"
           "echo $? > " +
           path("known.rc") + "\n" + ctl + " known-mass 99999 > " + path("absurd.txt") +
@@ -142,6 +145,10 @@ TEST_F(MonitorProcessTest, ShowsWhatVmassCtlToldVmassd) {
   EXPECT_EQ(read("known.rc"), "0\n") << read("known.txt") << read("daemon.log");
   EXPECT_EQ(read("known.txt"),
             "vmassd: accepted: known mass 1800.0 kg (std 9.0 kg) from the next tick\n");
+  EXPECT_EQ(read("tyres.rc"), "0\n") << read("tyres.txt");
+  EXPECT_EQ(read("tyres.txt").rfind("vmassd: accepted: new tyres - the learnt scale widens ", 0),
+            0u)
+      << read("tyres.txt");
   EXPECT_EQ(read("absurd.rc"), "1\n") << read("absurd.txt");
   EXPECT_EQ(read("absurd.txt").rfind("vmassd: refused: known mass 99999.0 kg ", 0), 0u)
       << read("absurd.txt");

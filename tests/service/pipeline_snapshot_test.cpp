@@ -76,6 +76,8 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.learnt.anchor_weighted_log_scale, b.learnt.anchor_weighted_log_scale);
   EXPECT_EQ(a.learnt.anchor_weighted_common_std, b.learnt.anchor_weighted_common_std);
   EXPECT_EQ(a.learnt.anchors, b.learnt.anchors);
+  EXPECT_EQ(a.learnt.tyre_changes, b.learnt.tyre_changes);
+  EXPECT_EQ(a.learnt.evidence_since_tyres, b.learnt.evidence_since_tyres);
   EXPECT_EQ(a.static_anchor_pending, b.static_anchor_pending);
   EXPECT_EQ(a.static_anchor.log_scale, b.static_anchor.log_scale);
   EXPECT_EQ(a.static_anchor.variance, b.static_anchor.variance);
@@ -395,9 +397,10 @@ TEST_F(StateFileTest, TheLearntSectionRoundTripsAndAVersionOneFileStillLoads) {
   EXPECT_EQ(back.snapshot.nig_mean[0], state_.snapshot.nig_mean[0]);
 }
 
-// Format version 3 added the learnt gear masses, version 4 their reference relative to the mass.
-// A version-2 file (before them) and a version-3 one (whose reference was in kg) still load their
-// learnt scale and leave the pipeline's own gear masses alone.
+// Format version 3 added the learnt gear masses, version 4 their reference relative to the mass,
+// 5 the static anchors, 6 the tyre changes. A version-2 file (before them) and a version-3 one
+// (whose reference was in kg) still load their learnt scale and leave the pipeline's own gear
+// masses alone.
 TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   SavedState geared = state_;
   GearMassesState& g = geared.snapshot.gear_masses;
@@ -417,6 +420,8 @@ TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   anchors.anchor_weighted_log_scale = 62.5;
   anchors.anchor_weighted_common_std = 50.125;
   anchors.anchors = 3;
+  anchors.tyre_changes = 1;
+  anchors.evidence_since_tyres = 1;
   geared.snapshot.static_anchor_pending = true;
   geared.snapshot.static_anchor = AnchorObservation{0.0275, 6.25e-4, 0.0234375};
   const std::string text = service::format_state(geared);
@@ -467,6 +472,22 @@ TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   EXPECT_EQ(back.snapshot.learnt.anchors, 0);
   EXPECT_EQ(back.snapshot.learnt.anchor_weight, 0.0);
   EXPECT_FALSE(back.snapshot.static_anchor_pending);
+
+  // Version 5: no tyre change; every known mass counts as one since the tyres.
+  std::string v5 = text.substr(0, text.find("checksum "));
+  v5.replace(0, v5.find('\n'), "vmass-state 5");
+  for (const char* key : {"learnt_tyre_changes ", "learnt_evidence_since_tyres "}) {
+    const std::size_t at = v5.find(std::string("\n") + key);
+    ASSERT_NE(at, std::string::npos) << key;
+    v5.erase(at + 1, v5.find('\n', at + 1) - at);
+  }
+  h = 0xcbf29ce484222325ull;
+  for (unsigned char c : v5) h = (h ^ c) * 0x100000001b3ull;
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  ASSERT_TRUE(service::parse_state(v5 + "checksum " + hex + "\n", &back, &error)) << error;
+  EXPECT_EQ(back.snapshot.learnt.anchors, 3);
+  EXPECT_EQ(back.snapshot.learnt.tyre_changes, 0);
+  EXPECT_EQ(back.snapshot.learnt.evidence_since_tyres, 2);
 
   // A gear line one number short names its key.
   std::string short_row = text.substr(0, text.find("checksum "));

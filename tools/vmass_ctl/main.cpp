@@ -2,10 +2,13 @@
 //
 //   vmass-ctl [--config FILE] [--lcm-url URL] [--timeout S] known-mass KG [--std KG] [--note TEXT]
 //   vmass-ctl [--config FILE] [--lcm-url URL] [--timeout S] reset-learnt [--note TEXT]
+//   vmass-ctl [--config FILE] [--lcm-url URL] [--timeout S] tyres-changed [--note TEXT]
 //
 //   known-mass KG   the current load's mass is KG (a weighbridge ticket, "empty, driver only"),
 //                   with a std of --std kg (default 0.5 % of KG)
 //   reset-learnt    forget what vmassd learnt about the car (back to the config's datasheet)
+//   tyres-changed   new tyres were fitted: the learnt scale widens by the rolling radius's
+//                   uncertainty, the rest of what was learnt is kept
 //
 // It publishes one vmass.command_t (utime: CLOCK_REALTIME, its id) on the config's
 // lcm.command_channel and waits up to --timeout seconds (default 3) for a vmass.status_t on
@@ -58,7 +61,7 @@ CLI::Validator positive_finite(const std::string& unit) {
 
 struct Options {
   std::string config_path, url, note;
-  std::string command;  ///< "known_mass" or "reset_learnt"
+  std::string command;  ///< "known_mass", "reset_learnt" or "tyres_changed"
   double mass_kg = 0.0;
   double std_kg = 0.0;  ///< 0: kDefaultRelativeStd of mass_kg
   double timeout_s = 3.0;
@@ -66,8 +69,8 @@ struct Options {
 
 std::optional<int> parse_options(int argc, char** argv, Options* o) {
   CLI::App app{
-      "vmass-ctl: tell a running vmassd a known mass of the current load, or to "
-      "forget what it learnt about the car; prints its answer"};
+      "vmass-ctl: tell a running vmassd a known mass of the current load, that new tyres were "
+      "fitted, or to forget what it learnt about the car; prints its answer"};
   app.require_subcommand(1);
   app.fallthrough();  // the global options after the subcommand too
   app.formatter(std::make_shared<vmass::tools::SubcommandsFormatter>());
@@ -93,12 +96,18 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
 
   CLI::App* reset =
       app.add_subcommand("reset-learnt",
-                         "forget what vmassd learnt about the car (new tyres, another car): back "
+                         "forget what vmassd learnt about the car (another car, a retrofit): back "
                          "to the config's datasheet values");
   reset->add_option("--note", o->note, "a note for vmassd's journal");
 
+  CLI::App* tyres = app.add_subcommand(
+      "tyres-changed",
+      "new tyres were fitted: the learnt scale widens by the rolling radius's uncertainty "
+      "(estimator.learning.tyre_change_std_fraction); the rest of what was learnt is kept");
+  tyres->add_option("--note", o->note, "a note for vmassd's journal, e.g. \"315/80 R22.5 new\"");
+
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return code;
-  o->command = known->parsed() ? "known_mass" : "reset_learnt";
+  o->command = known->parsed() ? "known_mass" : tyres->parsed() ? "tyres_changed" : "reset_learnt";
   if (known->parsed() && o->std_kg <= 0.0) o->std_kg = kDefaultRelativeStd * o->mass_kg;
   return std::nullopt;
 }

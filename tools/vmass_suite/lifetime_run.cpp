@@ -74,18 +74,27 @@ struct Learnt {
   long changes = 0;
 };
 
+/// What the user tells vmass before a drive's first tick.
+struct Declarations {
+  double known_mass_kg = 0.0;  ///< > 0: this mass is declared (a weighbridge ticket)
+  double known_std_kg = 0.0;
+  bool tyres_changed = false;  ///< the workshop's `vmass-ctl tyres-changed`
+};
+
 /// The drive through a pipeline restored from the variant's state file, saved there after it
-/// as vmassd saves it at its stop (the open batch flushed; nothing saved without a prior). With
-/// `known_mass_kg` > 0 that mass is declared before its first tick.
+/// as vmassd saves it at its stop (the open batch flushed; nothing saved without a prior), with
+/// the declarations made before its first tick.
 EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Truth& truth,
-                               const std::string& series, double known_mass_kg, double known_std_kg,
-                               bool* restored, Learnt* learnt, std::string* error) {
+                               const std::string& series, const Declarations& told, bool* restored,
+                               Learnt* learnt, std::string* error) {
   auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
   const service::StateRestore restore = service::restore_pipeline_state(v.state_path, *pipeline);
   *restored = restore.restored;
   if (restore.refused) *error = restore.message;
-  if (known_mass_kg > 0.0 && !pipeline->declare_known_mass(known_mass_kg, known_std_kg)) {
-    *error = "known mass " + std::to_string(known_mass_kg) + " kg refused";
+  if (told.tyres_changed) pipeline->tyres_changed();
+  if (told.known_mass_kg > 0.0 &&
+      !pipeline->declare_known_mass(told.known_mass_kg, told.known_std_kg)) {
+    *error = "known mass " + std::to_string(told.known_mass_kg) + " kg refused";
   }
   EstimatorResult r = run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
   const LearntScale& scale = pipeline->learnt_scale();
@@ -227,10 +236,13 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       std::string restore_error;
       const bool declares = v.known_mass && is_known_mass_drive(spec, drive.index);
       const double true_mass_kg = result.truth.front().mass_kg;
+      const Declarations told{declares ? true_mass_kg : 0.0,
+                              spec.known_mass_std_fraction * true_mass_kg,
+                              spec.tyre_change_declared && drive.index == spec.tyre_change_drive};
       Learnt learnt;
-      EstimatorResult life = lifetime_drive(
-          v, d, truth, series_path(spec, v, drive.index, "lifetime"), declares ? true_mass_kg : 0.0,
-          spec.known_mass_std_fraction * true_mass_kg, &restored, &learnt, &restore_error);
+      EstimatorResult life =
+          lifetime_drive(v, d, truth, series_path(spec, v, drive.index, "lifetime"), told,
+                         &restored, &learnt, &restore_error);
       life.knowledge = v.knowledge;
       if (auto m = keep_files(v, drive, d); !m.empty()) {
         out.error = m;
@@ -242,6 +254,7 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       if (!restore_error.empty()) j["restore_message"] = without_dir(restore_error, work_dir);
       add_result_fields(life, &j);
       j["known_mass_declared"] = declares;
+      j["tyres_declared"] = told.tyres_changed;
       j["learnt_scale"] = learnt.scale;
       j["learnt_scale_std"] = learnt.scale_std;
       j["learnt_evidence"] = learnt.evidence;

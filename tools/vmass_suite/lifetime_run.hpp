@@ -47,6 +47,9 @@ struct LifetimeSpec {
   std::vector<int> known_mass_drives;
   /// > 1: new tyres before this drive (sim::plan_lifetime), the config's radius unchanged.
   int tyre_change_drive = 0;
+  /// With tyre_change_drive: the workshop declares the new tyres (Pipeline::tyres_changed(), as
+  /// `vmass-ctl tyres-changed`) at the start of that drive.
+  bool tyre_change_declared = false;
   /// The declared known mass's relative std (a weighbridge's, or a datasheet's "empty").
   double known_mass_std_fraction = 0.005;
 };

@@ -10,7 +10,7 @@
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
 //   vmass-suite --lifetime DRIVES [--vehicles N | --vehicle-ids ID,...] [--held-out] [--lives K]
-//               [--known-mass-drives LIST] [--tyre-change-drive K]
+//               [--known-mass-drives LIST] [--tyre-change-drive K [--tyre-change-declared]]
 //               [--knowledge ...] [--estimators bayes,rls] [--keep-dir DIR] [--series-dir DIR]
 //               [--jobs J] --out FILE.jsonl
 //   vmass-suite --list-scenarios | --population-hash
@@ -18,7 +18,8 @@
 // --lifetime drives each vehicle DRIVES drives in a row through the daemon's state file (loads
 // changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle;
 // --known-mass-drives also carries each with its true mass declared at those drives;
-// --tyre-change-drive fits new tyres (radius 1-3 % larger) before drive K of every life.
+// --tyre-change-drive fits new tyres (radius 1-3 % larger) before drive K of every life;
+// --tyre-change-declared has the workshop say so (vmass-ctl tyres-changed) at its start.
 //
 // --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
 // --series-dir DIR writes per-tick CSVs (10 Hz) of the runs named by --series RUN,... where
@@ -92,9 +93,10 @@ struct Options {
   std::string scenarios, estimators, knowledge, realism = "all", estimator_yaml_path, out;
   std::string ablation, series_dir, series, runs;
   int jobs = 0;
-  int lifetime_drives = 0;        ///< > 0: the lifetime mode
-  std::string known_mass_drives;  ///< --lifetime: drives whose true mass is declared
-  int tyre_change_drive = 0;      ///< --lifetime: new tyres before this drive (0: never)
+  int lifetime_drives = 0;            ///< > 0: the lifetime mode
+  std::string known_mass_drives;      ///< --lifetime: drives whose true mass is declared
+  int tyre_change_drive = 0;          ///< --lifetime: new tyres before this drive (0: never)
+  bool tyre_change_declared = false;  ///< --lifetime: ... and the workshop declares them
   int lives = 1;
   std::string keep_dir, vehicle_ids;
   std::string population = "cars";         ///< or trucks (truck_population.hpp)
@@ -281,6 +283,10 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
            " is not a drive index 2.." + std::to_string(o.lifetime_drives);
   }
   base.tyre_change_drive = o.tyre_change_drive;
+  if (o.tyre_change_declared && o.tyre_change_drive == 0) {
+    return "--tyre-change-declared needs --tyre-change-drive";
+  }
+  base.tyre_change_declared = o.tyre_change_declared;
   std::vector<std::string> ids = split(o.vehicle_ids);
   if (ids.empty()) {
     ids = population_ids(o);
@@ -380,6 +386,9 @@ void add_lifetime_options(CLI::App& app, Options* o) {
   app.add_option("--tyre-change-drive", o->tyre_change_drive,
                  "--lifetime: new tyres (radius 1-3 % larger, the config's unchanged) before "
                  "this drive of every life");
+  app.add_flag("--tyre-change-declared", o->tyre_change_declared,
+               "--lifetime: the workshop declares those tyres (vmass-ctl tyres-changed) at the "
+               "start of that drive");
   app.add_option("--vehicle-ids", o->vehicle_ids,
                  "--lifetime: these vehicles (CLASS-SEED,...) instead of the population's");
   app.add_option("--keep-dir", o->keep_dir,

@@ -12,7 +12,9 @@
 // outlier_sigma from the belief counts less (Huber), and the belief is not moved by one alone.
 // A change of the car (new tyres, a retrofit): two such pieces of evidence in a row on the same
 // side, consistent with each other, restart the belief from them. Drift (tyre wear): each power
-// cycle widens the belief a little.
+// cycle widens the belief a little. New tyres declared by the workshop (tyres_changed): the
+// radius moved by an amount nobody measured, so the belief widens by its uncertainty, keeping
+// its mean, and the static anchors start again.
 //
 // Static anchors (a car whose deflection sensor reads its load, StaticAnchor): each drive's
 // pairs against the standstill reading of that load are evidence too, but every reading of the
@@ -20,7 +22,8 @@
 // away. So they are kept apart, as the weighted mean of their evidence (each weighed by its own
 // precision: a load whose position is unknown counts little, the driver alone much) whose
 // variance never falls below the shared part. They join the datasheet's belief until a known
-// mass is declared; from then on the known masses alone make it.
+// mass is declared; from then on the known masses alone make it, until new tyres: then the
+// anchors read since the change join the widened belief until the next known mass.
 //
 // Pure; not thread-safe (one owner).
 #pragma once
@@ -55,6 +58,10 @@ struct LearningParams {
   bool learn_gear_masses = true;
   /// ... a gear counts in a drive's evidence from this many of its pairs.
   long min_gear_evidence_pairs = 20;
+  /// New tyres (tyres_changed): the relative std of the rolling radius's change. Worn tread
+  /// replaced by new is +1 to +3 % of the radius; a seasonal set or another size moves it either
+  /// way. The mean is kept: the change's size depends on how worn the old set was.
+  double tyre_change_std_fraction = 0.02;
 
   std::string validate() const;
 };
@@ -79,7 +86,11 @@ struct LearntScaleState {
   double anchor_weight = 0.0;
   double anchor_weighted_log_scale = 0.0;
   double anchor_weighted_common_std = 0.0;
-  long anchors = 0;  ///< drives whose static anchor was taken
+  long anchors = 0;       ///< drives whose static anchor was taken
+  long tyre_changes = 0;  ///< new tyres declared (tyres_changed)
+  /// Known masses taken since the last tyre change (all of them without one): the anchors join
+  /// the belief while there is none.
+  long evidence_since_tyres = 0;
 };
 
 enum class ScaleEvidence : std::uint8_t {
@@ -115,6 +126,10 @@ class LearntScale {
   ScaleEvidence add_anchor(double log_scale, double variance, double common_std);
   /// The vehicle was switched off and on: the belief widens by the drift.
   void drift();
+  /// New tyres (a workshop's declaration): the belief widens by tyre_change_std_fraction, the
+  /// pending outlier and the static anchors (read on the old tyres) are dropped, and the anchors
+  /// read from now on join the belief until the next known mass.
+  void tyres_changed();
   /// Back to the datasheet (a user's reset).
   void reset();
   /// false (and nothing changed) when the state is not a belief this class could hold.

@@ -195,6 +195,11 @@ class Pipeline {
   bool declare_known_mass(double mass_kg, double std_kg);
   /// Forget what was learnt about the car (back to the config's datasheet values).
   void reset_learnt();
+  /// New tyres were fitted (a workshop's declaration): the current load's evidence so far (read
+  /// on the old tyres) is taken and its known mass ends, then the learnt scale widens by the
+  /// radius's uncertainty and its static anchors start again (LearntScale::tyres_changed); the
+  /// rotating masses are kept.
+  void tyres_changed();
   /// Resume what was learnt about the car alone (the snapshot's learnt scale and gear masses,
   /// when its mass section does not fit); false and nothing changed when either is refused.
   bool restore_learnt(const PipelineSnapshot& snapshot);

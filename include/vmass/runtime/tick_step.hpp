@@ -51,6 +51,8 @@ class TickStep {
   }
   /// Forget what was learnt about the car (Pipeline::reset_learnt()).
   void reset_learnt() { pipeline_.reset_learnt(); }
+  /// New tyres were fitted (Pipeline::tyres_changed()).
+  void tyres_changed() { pipeline_.tyres_changed(); }
   /// At the end of the input: takes the open batch in (Pipeline::flush()); true when the
   /// estimate changed.
   bool flush() { return pipeline_.flush(); }
