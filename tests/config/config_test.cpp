@@ -142,6 +142,20 @@ TEST(Config, TheRotatingTermsSourceIsReadAndChecked) {
       << bad.error;
 }
 
+TEST(Config, TheTyreChangesWideningIsReadAndChecked) {
+  const std::string section = "estimator:\n  learning:\n    tyre_change_std_fraction: ";
+  EXPECT_DOUBLE_EQ(load_config_text(kMinimal, "default.yaml")
+                       .config->pipeline.estimator.learning.tyre_change_std_fraction,
+                   0.02);
+  const ConfigLoad ok = load_config_text(std::string(kMinimal) + section + "0.03\n", "t.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_DOUBLE_EQ(ok.config->pipeline.estimator.learning.tyre_change_std_fraction, 0.03);
+  const ConfigLoad bad = load_config_text(std::string(kMinimal) + section + "0\n", "t.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("estimator.learning.tyre_change_std_fraction"), std::string::npos)
+      << bad.error;
+}
+
 TEST(Config, RawSectionsAreKeptForTheirLayers) {
   const ConfigLoad c = load_config_text(
       std::string(kMinimal) + "lcm:\n  url: memq://\ncan:\n  dbc: car.dbc\n", "raw.yaml");

@@ -135,7 +135,7 @@ inline constexpr std::array<Field<BayesParams>, 4> kBayesFields{{
     {"credible_level", &BayesParams::credible_level},
 }};
 
-inline constexpr std::array<Field<LearningParams>, 8> kLearningFields{{
+inline constexpr std::array<Field<LearningParams>, 9> kLearningFields{{
     {"drift_std_per_drive", &LearningParams::drift_std_per_drive},
     {"outlier_sigma", &LearningParams::outlier_sigma},
     {"min_evidence_pairs", &LearningParams::min_evidence_pairs},
@@ -144,6 +144,7 @@ inline constexpr std::array<Field<LearningParams>, 8> kLearningFields{{
     {"max_abs_log_scale", &LearningParams::max_abs_log_scale},
     {"learn_gear_masses", &LearningParams::learn_gear_masses},
     {"min_gear_evidence_pairs", &LearningParams::min_gear_evidence_pairs},
+    {"tyre_change_std_fraction", &LearningParams::tyre_change_std_fraction},
 }};
 
 /// The section's layout: `v.fields(table, params)` for the keys of one level, `v.begin(key)` and
