@@ -66,12 +66,15 @@ PipelineParams params_for(const Config& config, const std::string& estimator) {
   return params;
 }
 
-/// What the lifetime drive learnt (Pipeline::learnt_scale(), after the drive).
+/// What the lifetime drive learnt (Pipeline::learnt_scale(), after the drive), and what its
+/// last estimate's std was made of (relative to its mass): the interval's honesty, by part.
 struct Learnt {
   double scale = 1.0;
   double scale_std = 0.0;
   long evidence = 0;
   long changes = 0;
+  double mass_std = 0.0;   ///< the published std (regression and model)
+  double model_std = 0.0;  ///< its model part: the scale, the floor, the rotating masses
 };
 
 /// What the user tells vmass before a drive's first tick.
@@ -98,8 +101,14 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   }
   EstimatorResult r = run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
   const LearntScale& scale = pipeline->learnt_scale();
-  *learnt =
-      Learnt{scale.scale(), scale.relative_std(), scale.state().evidence, scale.state().changes};
+  const Estimate& last = pipeline->estimate();
+  const double mass = last.mass_kg > 0.0 ? last.mass_kg : 1.0;
+  *learnt = Learnt{scale.scale(),
+                   scale.relative_std(),
+                   scale.state().evidence,
+                   scale.state().changes,
+                   last.mass_std_kg / mass,
+                   last.mass_model_std_kg / mass};
   pipeline->flush();
   const TimeUs saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
   std::string save_error;
@@ -259,6 +268,8 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       j["learnt_scale_std"] = learnt.scale_std;
       j["learnt_evidence"] = learnt.evidence;
       j["learnt_changes"] = learnt.changes;
+      j["mass_std_end_pct"] = 100.0 * learnt.mass_std;
+      j["model_std_end_pct"] = 100.0 * learnt.model_std;
       out.json_lines += j.dump() + "\n";
       if (v.known_mass) continue;  // its fresh drives are the variant's without
       EstimatorResult fresh = fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"));
