@@ -704,6 +704,8 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   estimate_.learnt_evidence = learnt_.state().evidence;
   estimate_.learnt_changes = learnt_.state().changes;
   estimate_.learnt_anchors = learnt_.state().anchors;
+  estimate_.learnt_tyre_changes = learnt_.state().tyre_changes;
+  estimate_.learnt_evidence_since_tyres = learnt_.state().evidence_since_tyres;
   estimate_.known_mass = known_mass_.active;
   publish_learnt_gears();
   refresh_belief();

@@ -232,6 +232,8 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->learnt_evidence = s.has_tick ? e.learnt_evidence : 0;
   out->learnt_changes = s.has_tick ? e.learnt_changes : 0;
   out->learnt_anchors = s.has_tick ? e.learnt_anchors : 0;
+  out->learnt_tyre_changes = s.has_tick ? e.learnt_tyre_changes : 0;
+  out->learnt_evidence_since_tyres = s.has_tick ? e.learnt_evidence_since_tyres : 0;
   out->known_mass = s.has_tick && e.known_mass;
   learnt_gears_to_lcm(s.has_tick ? e : Estimate{}, out);
   out->commands_received = s.commands_received;

@@ -127,7 +127,9 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   status.last.estimate.learnt_gear_correction_kg = {-1250.5, -310.25, 12.0};
   status.last.estimate.learnt_gear_std_kg = {400.0, 150.5, 30.25};
   status.last.estimate.learnt_gear_drives = 6;
-  status.last.estimate.learnt_anchors = 4;  // schema 6
+  status.last.estimate.learnt_anchors = 4;       // schema 6
+  status.last.estimate.learnt_tyre_changes = 1;  // schema 7
+  status.last.estimate.learnt_evidence_since_tyres = 1;
   status.commands_received = 1;
   status.last_command_utime = 1733358000000000;
   status.last_command_result = "accepted: known mass 1650.0 kg (std 8.2 kg) from the next tick";
@@ -201,7 +203,7 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.tick_overruns, 2);
   EXPECT_EQ(s.jitter_p99_us, 240.0);
   EXPECT_TRUE(s.state_restored);
-  EXPECT_EQ(s.schema_version, 6);
+  EXPECT_EQ(s.schema_version, 7);
   ASSERT_EQ(s.num_verdicts, static_cast<int>(PairVerdict::kCount));
   EXPECT_EQ(s.verdict_name[0], "accepted");
   const auto steering = static_cast<std::size_t>(PairVerdict::kSteering);
@@ -218,6 +220,8 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.learnt_gear_std_kg[1], 150.5);
   EXPECT_EQ(s.learnt_gear_drives, 6);
   EXPECT_EQ(s.learnt_anchors, 4);
+  EXPECT_EQ(s.learnt_tyre_changes, 1);
+  EXPECT_EQ(s.learnt_evidence_since_tyres, 1);
   EXPECT_TRUE(s.known_mass);
   EXPECT_EQ(s.commands_received, 1);
   EXPECT_EQ(s.last_command_utime, 1733358000000000);

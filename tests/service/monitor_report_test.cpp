@@ -114,6 +114,28 @@ TEST(MonitorReport, WhatIsLearntAboutTheCar) {
                       "          1 change of the car detected"),
             std::string::npos)
       << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  // New tyres declared: what taught the widened scale since.
+  s.learnt_scale_std = 0.0231;
+  s.learnt_tyre_changes = 1;
+  s.learnt_evidence_since_tyres = 0;
+  s.learnt_anchors = 2;
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
+                .find("\nlearnt    scale 1.031 +- 2.3 % from 1 drive on a known mass\n"
+                      "          1 change of the car detected\n"
+                      "          new tyres: 0 known masses and 2 standstill readings since\n"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  s.learnt_tyre_changes = 2;
+  s.learnt_evidence_since_tyres = 1;
+  s.learnt_anchors = 0;
+  s.learnt_changes = 0;
+  s.learnt_scale_std = 0.0123;
+  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
+                .find("from 1 drive on a known mass\n          new tyres x2: 1 known mass since\n"),
+            std::string::npos)
+      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  s.learnt_tyre_changes = 0;
+  s.learnt_changes = 1;
   // The gears' rotating masses: the datasheet's until a drive in two gears taught them.
   s.num_learnt_gears = 2;
   s.learnt_gear_correction_kg = {0.0, 0.0};

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -36,6 +38,24 @@ void drive(Pipeline& p, const std::vector<Sample>& samples) {
 std::vector<Sample> shifted(std::vector<Sample> samples, TimeUs offset_us) {
   for (Sample& s : samples) s.time_us += offset_us;
   return samples;
+}
+
+/// `text` (a state file) as an older format wrote it: version `version`, without the lines of
+/// `dropped`, with its own checksum. "" when a dropped key is not in it.
+std::string as_older_format(const std::string& text, int version,
+                            std::initializer_list<const char*> dropped) {
+  std::string out = text.substr(0, text.find("checksum "));
+  out.replace(0, out.find('\n'), "vmass-state " + std::to_string(version));
+  for (const char* key : dropped) {
+    const std::size_t at = out.find(std::string("\n") + key + " ");
+    if (at == std::string::npos) return "";
+    out.erase(at + 1, out.find('\n', at + 1) - at);
+  }
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : out) h = (h ^ c) * 0x100000001b3ull;
+  char hex[32];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return out + "checksum " + hex + "\n";
 }
 
 void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
@@ -453,20 +473,13 @@ TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   EXPECT_FALSE(back.snapshot.gear_masses_saved);
 
   // Version 4: no static anchors (none taken, none pending).
-  std::string v4 = text.substr(0, text.find("checksum "));
-  v4.replace(0, v4.find('\n'), "vmass-state 4");
-  for (const char* key :
-       {"learnt_anchor_weight ", "learnt_anchor_weighted_log_scale ",
-        "learnt_anchor_weighted_common_std ", "learnt_anchors ", "static_anchor_pending ",
-        "static_anchor_log_scale ", "static_anchor_variance ", "static_anchor_common_std "}) {
-    const std::size_t at = v4.find(std::string("\n") + key);
-    ASSERT_NE(at, std::string::npos) << key;
-    v4.erase(at + 1, v4.find('\n', at + 1) - at);
-  }
-  h = 0xcbf29ce484222325ull;
-  for (unsigned char c : v4) h = (h ^ c) * 0x100000001b3ull;
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  ASSERT_TRUE(service::parse_state(v4 + "checksum " + hex + "\n", &back, &error)) << error;
+  const std::string v4 = as_older_format(
+      text, 4,
+      {"learnt_anchor_weight", "learnt_anchor_weighted_log_scale",
+       "learnt_anchor_weighted_common_std", "learnt_anchors", "static_anchor_pending",
+       "static_anchor_log_scale", "static_anchor_variance", "static_anchor_common_std"});
+  ASSERT_FALSE(v4.empty());
+  ASSERT_TRUE(service::parse_state(v4, &back, &error)) << error;
   EXPECT_TRUE(back.snapshot.gear_masses_saved);
   EXPECT_EQ(back.snapshot.learnt.log_scale, 0.0312);
   EXPECT_EQ(back.snapshot.learnt.anchors, 0);
@@ -474,17 +487,10 @@ TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   EXPECT_FALSE(back.snapshot.static_anchor_pending);
 
   // Version 5: no tyre change; every known mass counts as one since the tyres.
-  std::string v5 = text.substr(0, text.find("checksum "));
-  v5.replace(0, v5.find('\n'), "vmass-state 5");
-  for (const char* key : {"learnt_tyre_changes ", "learnt_evidence_since_tyres "}) {
-    const std::size_t at = v5.find(std::string("\n") + key);
-    ASSERT_NE(at, std::string::npos) << key;
-    v5.erase(at + 1, v5.find('\n', at + 1) - at);
-  }
-  h = 0xcbf29ce484222325ull;
-  for (unsigned char c : v5) h = (h ^ c) * 0x100000001b3ull;
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  ASSERT_TRUE(service::parse_state(v5 + "checksum " + hex + "\n", &back, &error)) << error;
+  const std::string v5 =
+      as_older_format(text, 5, {"learnt_tyre_changes", "learnt_evidence_since_tyres"});
+  ASSERT_FALSE(v5.empty());
+  ASSERT_TRUE(service::parse_state(v5, &back, &error)) << error;
   EXPECT_EQ(back.snapshot.learnt.anchors, 3);
   EXPECT_EQ(back.snapshot.learnt.tyre_changes, 0);
   EXPECT_EQ(back.snapshot.learnt.evidence_since_tyres, 2);

@@ -110,6 +110,21 @@ void gear_items(const vmass::status_t& s, std::vector<std::string>* items) {
   }
 }
 
+/// New tyres declared, and what taught the scale since: "new tyres: 0 known masses and 2
+/// standstill readings since" (the readings count in the scale until a known mass).
+std::string tyres_item(const vmass::status_t& s) {
+  const std::string times =
+      s.learnt_tyre_changes == 1 ? "" : format(" x%lld", ll(s.learnt_tyre_changes));
+  std::string out =
+      format("new tyres%s: %lld known mass%s", times.c_str(), ll(s.learnt_evidence_since_tyres),
+             s.learnt_evidence_since_tyres == 1 ? "" : "es");
+  if (s.learnt_anchors > 0) {
+    out += format(" and %lld standstill reading%s", ll(s.learnt_anchors),
+                  s.learnt_anchors == 1 ? "" : "s");
+  }
+  return out + " since";
+}
+
 /// What vmassd learnt about the car: the lumped longitudinal scale, the gears' rotating masses
 /// and the changes it saw.
 std::string learnt_lines(const vmass::status_t& s) {
@@ -129,6 +144,7 @@ std::string learnt_lines(const vmass::status_t& s) {
     items.push_back(format("%lld change%s of the car detected", ll(s.learnt_changes),
                            s.learnt_changes == 1 ? "" : "s"));
   }
+  if (s.learnt_tyre_changes > 0) items.push_back(tyres_item(s));
   gear_items(s, &items);
   return wrap_items("learnt", items);
 }

@@ -114,8 +114,10 @@ struct Estimate {
   double learnt_scale_std = 0.0;
   long learnt_evidence = 0;
   long learnt_changes = 0;
-  long learnt_anchors = 0;  ///< drives whose standstill reading anchored the scale
-  bool known_mass = false;  ///< the published mass is a mass the user declared
+  long learnt_anchors = 0;               ///< drives whose standstill reading anchored the scale
+  long learnt_tyre_changes = 0;          ///< new tyres declared (LearntScale::tyres_changed)
+  long learnt_evidence_since_tyres = 0;  ///< of learnt_evidence, those since the last ones
+  bool known_mass = false;               ///< the published mass is a mass the user declared
   /// Each gear's rotating mass learnt across drives (LearntGearMasses): the correction of the
   /// config's mass of gear i + 1 and its std, kg, for learnt_gears gears; the drives it rests on.
   int learnt_gears = 0;
