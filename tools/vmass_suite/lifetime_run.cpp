@@ -103,12 +103,8 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   const LearntScale& scale = pipeline->learnt_scale();
   const Estimate& last = pipeline->estimate();
   const double mass = last.mass_kg > 0.0 ? last.mass_kg : 1.0;
-  *learnt = Learnt{scale.scale(),
-                   scale.relative_std(),
-                   scale.state().evidence,
-                   scale.state().changes,
-                   last.mass_std_kg / mass,
-                   last.mass_model_std_kg / mass};
+  *learnt = Learnt{scale.scale(),         scale.relative_std(),    scale.state().evidence,
+                   scale.state().changes, last.mass_std_kg / mass, last.mass_model_std_kg / mass};
   pipeline->flush();
   const TimeUs saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
   std::string save_error;
