@@ -39,6 +39,11 @@ start=$(date +%s)
   --jobs "$jobs" --out "$out/lifetime.jsonl"
 "$bin/vmass-suite" --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" --known-mass-drives 1 --held-out \
   --vehicles "$held_out" --jobs "$jobs" --out "$out/lifetime_held_out.jsonl"
+# New tyres before drive 6, declared by the workshop (vmass-ctl tyres-changed), with and without
+# a known mass on drive 1.
+"$bin/vmass-suite" --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" --known-mass-drives 1 --vehicles "$vehicles" \
+  --tyre-change-drive 6 --tyre-change-declared --estimators bayes --jobs "$jobs" \
+  --out "$out/lifetime_tyres.jsonl"
 # Engine torque and engine speed, with the gear number or with the ratio derived from the engine
 # speed (issue 29): every combustion vehicle both ways, on the same drives, one seed, bayes.
 for signal in engine_gear_index engine_speed_ratio; do
@@ -57,6 +62,7 @@ rm -rf docs/accuracy
 /usr/bin/python3 "$bin/vmass-accuracy-report" --population "$out/population.jsonl" \
   --held-out "$out/held_out.jsonl" --ablation "$out/ablation.jsonl" \
   --lifetime "$out/lifetime.jsonl" --lifetime-held-out "$out/lifetime_held_out.jsonl" \
+  --tyre-lifetime "$out/lifetime_tyres.jsonl" \
   --series-dir "$out/series" --plots-dir docs/accuracy --out docs/accuracy.md \
   --torque-signals "$out/torque_engine_gear_index.jsonl" "$out/torque_engine_speed_ratio.jsonl" \
   --command "VEHICLES=$vehicles HELD_OUT=$held_out SEEDS=$seeds DRIVES=${DRIVES:-10} LIVES=${LIVES:-1} scripts/accuracy-suite.sh" \

@@ -3,9 +3,11 @@
 
   vmass-accuracy-report --population RUNS.jsonl [--held-out RUNS.jsonl] [--ablation RUNS.jsonl]
                         [--lifetime RUNS.jsonl] [--lifetime-held-out RUNS.jsonl]
+                        [--tyre-lifetime RUNS.jsonl]
                         [--series-dir DIR] [--plots-dir DIR] --out docs/accuracy.md
                         [--command "..."] [--commit SHA] [--population-hash HASH]
   vmass-accuracy-report --lifetime RUNS.jsonl --out -     (the lifetime tables alone, to stdout)
+  vmass-accuracy-report --tyre-lifetime RUNS.jsonl --out - (the new tyres' table alone)
   vmass-accuracy-report --trucks RUNS.jsonl [--trucks-held-out RUNS.jsonl] --out docs/accuracy-trucks.md
 
 Every number in the report is computed here from the JSON lines; nothing is typed in by hand.
@@ -413,6 +415,46 @@ def lifetime_section(rows, title, out):
                 known_mass_table(known, plain, out)
 
 
+def tyre_group(d, change):
+    return f"1-{change - 1}" if d < change else f"{change}-{change + 1}" if d <= change + 1 \
+        else f"{change + 2}+"
+
+
+def tyre_table(rows, out):
+    """Lives with new tyres fitted and declared (vmass-suite --tyre-change-drive K
+    --tyre-change-declared): the lifetime runs by group of drives, before and after the change."""
+    life = [r for r in rows if r.get("mode") == "lifetime"]
+    changes = sorted({r["drive"] for r in life if r.get("tyres_declared")})
+    if not changes:
+        out.append("No life has its new tyres declared.\n")
+        return
+    change = changes[0]
+    out.append(f"New tyres (radius 1-3 % larger, the config's unchanged) fitted before drive "
+               f"{change} and declared at its start (`vmass-ctl tyres-changed`); a known mass "
+               f"on drive 1 where the row says so. Lifetime runs only.\n")
+    out.append("| knowledge | deflection sensor | known mass | drives | runs | median \\|final\\| % "
+               "| p90 % | covers at 20 s / 60 s / end % | median half-width % |")
+    out.append("|" + "---|" * 9)
+    groups = [tyre_group(d, change) for d in (1, change, change + 2)]
+    for k in KNOWLEDGE:
+        for sensor in (True, False):
+            for known in (True, False):
+                for g in groups:
+                    sub = [r for r in life if r.get("knowledge") == k
+                           and r.get("deflection_sensor") == sensor
+                           and bool(r.get("known_mass")) == known
+                           and tyre_group(r["drive"], change) == g]
+                    if not sub:
+                        continue
+                    s = cell_stats(sub)
+                    out.append(f"| {k.replace('_', ' ')} | {'yes' if sensor else 'no'} | "
+                               f"{'yes' if known else 'no'} | {g} | {len(sub)} | "
+                               f"{fmt(s['median'])} | {fmt(s['p90'])} | {fmt(s['cov20'], 0)} / "
+                               f"{fmt(s['cov60'], 0)} / {fmt(s['covend'], 0)} | "
+                               f"{fmt(s['halfwidth'])} |")
+    out.append("")
+
+
 def plot_series(series_dir, plots_dir, out):
     try:
         import matplotlib
@@ -514,6 +556,8 @@ def main():
     p.add_argument("--population")
     p.add_argument("--lifetime")
     p.add_argument("--lifetime-held-out")
+    p.add_argument("--tyre-lifetime", help="vmass-suite --lifetime --tyre-change-drive K "
+                   "--tyre-change-declared runs")
     p.add_argument("--held-out")
     p.add_argument("--ablation")
     p.add_argument("--series-dir")
@@ -538,9 +582,14 @@ def main():
         truck_report(out)
         write_report(args.out, out)
         return
+    if not args.population and args.tyre_lifetime and not args.lifetime:
+        out = []
+        tyre_table(load(args.tyre_lifetime), out)
+        write_report(args.out, out)
+        return
     if not args.population:
         if not args.lifetime:
-            p.error("--population or --lifetime is required")
+            p.error("--population, --lifetime or --tyre-lifetime is required")
         out = []
         lifetime_section(load(args.lifetime), "Lifetime", out)
         write_report(args.out, out)
@@ -610,6 +659,9 @@ def main():
         lifetime_section(load(args.lifetime), "Population", out)
         if args.lifetime_held_out:
             lifetime_section(load(args.lifetime_held_out), "Held-out vehicles", out)
+    if args.tyre_lifetime:
+        out.append("## New tyres, declared (lifetime mode)\n")
+        tyre_table(load(args.tyre_lifetime), out)
     if args.torque_signals:
         out.append("## Engine torque: the gear number against the ratio from the engine speed\n")
         torque_signal_section(load(args.torque_signals[0]), load(args.torque_signals[1]), out)

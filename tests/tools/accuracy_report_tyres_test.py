@@ -1,0 +1,47 @@
+#!/usr/bin/env python3
+"""vmass-accuracy-report's new-tyres table (--tyre-lifetime): lifetime rows grouped before the
+declared change, its drive and the one after, and after that; fresh rows left out; every number
+computed from the rows.
+
+  accuracy_report_tyres_test.py VMASS_ACCURACY_REPORT WORK_DIR
+"""
+import json
+import os
+import subprocess
+import sys
+
+
+def row(drive, error, covered, known=True, mode="lifetime"):
+    return {"vehicle": "van-5", "knowledge": "datasheet_scale", "estimator": "bayes",
+            "deflection_sensor": True, "known_mass": known, "mode": mode, "drive": drive,
+            "tyres_declared": drive == 4 and mode == "lifetime", "supported": True,
+            "final_error_pct": error, "covered_20s": 1, "covered_60s": 1,
+            "covered_end": covered, "halfwidth_end_pct": 3.0 + drive}
+
+
+def main():
+    report, work = sys.argv[1], sys.argv[2]
+    os.makedirs(work, exist_ok=True)
+    rows = [row(1, 0.0, 1), row(2, -1.0, 1), row(3, 2.0, 1),  # before the change (drive 4)
+            row(4, 3.0, 0), row(5, -1.0, 1),                   # its drive and the next
+            row(6, 0.5, 1), row(7, -0.25, 1), row(8, 0.75, 1),  # after
+            row(6, 9.0, 0, mode="fresh")]                      # not a lifetime row
+    path = os.path.join(work, "tyres.jsonl")
+    with open(path, "w", encoding="utf-8") as f:
+        f.writelines(json.dumps(r) + "\n" for r in rows)
+    text = subprocess.run([sys.executable, report, "--tyre-lifetime", path, "--out", "-"],
+                          check=True, capture_output=True, text=True).stdout
+    expected = [
+        "fitted before drive 4 and declared at its start",
+        "| datasheet scale | yes | yes | 1-3 | 3 | 1.00 | 1.80 | 100 / 100 / 100 | 5.00 |",
+        "| datasheet scale | yes | yes | 4-5 | 2 | 2.00 | 2.80 | 100 / 100 / 50 | 7.50 |",
+        "| datasheet scale | yes | yes | 6+ | 3 | 0.50 | 0.70 | 100 / 100 / 100 | 10.00 |",
+    ]
+    missing = [e for e in expected if e not in text]
+    if missing:
+        sys.exit("missing from the report:\n" + "\n".join(missing) + "\n--- report:\n" + text)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
