@@ -8,7 +8,8 @@
 //                   with a std of --std kg (default 0.5 % of KG)
 //   reset-learnt    forget what vmassd learnt about the car (back to the config's datasheet)
 //   tyres-changed   new tyres were fitted: the learnt scale widens by the rolling radius's
-//                   uncertainty, the rest of what was learnt is kept
+//                   uncertainty, the rest of what was learnt is kept; a declared known mass
+//                   ends (send it before a weighbridge ticket of the same visit)
 //
 // It publishes one vmass.command_t (utime: CLOCK_REALTIME, its id) on the config's
 // lcm.command_channel and waits up to --timeout seconds (default 3) for a vmass.status_t on
@@ -103,7 +104,8 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
   CLI::App* tyres = app.add_subcommand(
       "tyres-changed",
       "new tyres were fitted: the learnt scale widens by the rolling radius's uncertainty "
-      "(estimator.learning.tyre_change_std_fraction); the rest of what was learnt is kept");
+      "(estimator.learning.tyre_change_std_fraction); the rest of what was learnt is kept. It "
+      "ends a declared known mass: send it before a weighbridge ticket of the same visit");
   tyres->add_option("--note", o->note, "a note for vmassd's journal, e.g. \"315/80 R22.5 new\"");
 
   if (const auto code = vmass::tools::parse_command_line(app, argc, argv)) return code;
