@@ -83,74 +83,63 @@ TEST(MonitorReport, WrapsUnderTheFirstItem) {
             "mass      (no estimate received)\ndaemon    (no status received)\n");
 }
 
+/// The status's report holds `text`; else the report, to read.
+::testing::AssertionResult report_has(const vmass::status_t& s, const std::string& text) {
+  const std::string report = monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  if (report.find(text) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "no '" << text << "' in:\n" << report;
+}
+
 TEST(MonitorReport, WhatIsLearntAboutTheCar) {
   vmass::status_t s{};
   s.state_name = "running";
   s.learnt_scale = 1.0;
   s.learnt_scale_std = 0.054;
-  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
-                .find("\nlearnt    scale: datasheet (no known mass yet)\ndaemon    running"),
-            std::string::npos);
+  EXPECT_TRUE(report_has(s, "\nlearnt    scale: datasheet (no known mass yet)\ndaemon    running"));
   // The deflection sensor's standstill readings anchored it: no known mass yet.
   s.learnt_scale = 0.9812;
   s.learnt_scale_std = 0.0231;
   s.learnt_anchors = 3;
-  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
-                .find("\nlearnt    scale 0.981 +- 2.3 % from 3 standstill readings (no known mass "
-                      "yet)\n"),
-            std::string::npos)
-      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  EXPECT_TRUE(report_has(
+      s, "\nlearnt    scale 0.981 +- 2.3 % from 3 standstill readings (no known mass yet)\n"));
   s.learnt_scale = 1.0314;
   s.learnt_scale_std = 0.0123;
   s.learnt_evidence = 2;
-  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
-                .find("\nlearnt    scale 1.031 +- 1.2 % from 2 drives on a known mass\n"),
-            std::string::npos)
-      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  EXPECT_TRUE(report_has(s, "\nlearnt    scale 1.031 +- 1.2 % from 2 drives on a known mass\n"));
   s.learnt_evidence = 1;
   s.learnt_changes = 1;
-  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
-                .find("\nlearnt    scale 1.031 +- 1.2 % from 1 drive on a known mass\n"
-                      "          1 change of the car detected"),
-            std::string::npos)
-      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
-  // New tyres declared: what taught the widened scale since.
-  s.learnt_scale_std = 0.0231;
-  s.learnt_tyre_changes = 1;
-  s.learnt_evidence_since_tyres = 0;
-  s.learnt_anchors = 2;
-  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
-                .find("\nlearnt    scale 1.031 +- 2.3 % from 1 drive on a known mass\n"
-                      "          1 change of the car detected\n"
-                      "          new tyres: 0 known masses and 2 standstill readings since\n"),
-            std::string::npos)
-      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
-  s.learnt_tyre_changes = 2;
-  s.learnt_evidence_since_tyres = 1;
-  s.learnt_anchors = 0;
-  s.learnt_changes = 0;
-  s.learnt_scale_std = 0.0123;
-  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
-                .find("from 1 drive on a known mass\n          new tyres x2: 1 known mass since\n"),
-            std::string::npos)
-      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
-  s.learnt_tyre_changes = 0;
-  s.learnt_changes = 1;
+  EXPECT_TRUE(report_has(s,
+                         "\nlearnt    scale 1.031 +- 1.2 % from 1 drive on a known mass\n"
+                         "          1 change of the car detected"));
   // The gears' rotating masses: the datasheet's until a drive in two gears taught them.
   s.num_learnt_gears = 2;
   s.learnt_gear_correction_kg = {0.0, 0.0};
   s.learnt_gear_std_kg = {1386.0, 693.0};
-  EXPECT_NE(monitor_report("memq://", 0.0, 0.0, nullptr, &s)
-                .find("rotating masses: datasheet (no drive with two gears yet)"),
-            std::string::npos)
-      << monitor_report("memq://", 0.0, 0.0, nullptr, &s);
+  EXPECT_TRUE(report_has(s, "rotating masses: datasheet (no drive with two gears yet)"));
   s.learnt_gear_drives = 3;
   s.learnt_gear_correction_kg = {-1250.4, 36.0};
   s.learnt_gear_std_kg = {400.2, 150.0};
-  const std::string report = monitor_report("memq://", 0.0, 0.0, nullptr, &s);
-  EXPECT_NE(report.find("rotating masses from 3 drives:"), std::string::npos) << report;
-  EXPECT_NE(report.find("gear 1 -1250 +- 400 kg   gear 2 +36 +- 150 kg\n"), std::string::npos)
-      << report;
+  EXPECT_TRUE(report_has(s, "rotating masses from 3 drives:"));
+  EXPECT_TRUE(report_has(s, "gear 1 -1250 +- 400 kg   gear 2 +36 +- 150 kg\n"));
+}
+
+// New tyres declared (vmass-ctl tyres-changed): under the widened scale, what taught it since.
+TEST(MonitorReport, NewTyresSayWhatTaughtTheScaleSince) {
+  vmass::status_t s{};
+  s.state_name = "running";
+  s.learnt_scale = 1.0314;
+  s.learnt_scale_std = 0.0231;
+  s.learnt_evidence = 1;
+  s.learnt_tyre_changes = 1;
+  s.learnt_evidence_since_tyres = 0;
+  s.learnt_anchors = 2;
+  EXPECT_TRUE(report_has(s,
+                         "\nlearnt    scale 1.031 +- 2.3 % from 1 drive on a known mass\n"
+                         "          new tyres: 0 known masses and 2 standstill readings since\n"));
+  s.learnt_tyre_changes = 2;
+  s.learnt_evidence_since_tyres = 1;
+  s.learnt_anchors = 0;
+  EXPECT_TRUE(report_has(s, "\n          new tyres x2: 1 known mass since\n"));
 }
 
 TEST(MonitorReport, ADeclaredMassSaysSo) {
