@@ -842,10 +842,11 @@ bool Pipeline::provisional_state(RegressorState* out) const {
 }
 
 double Pipeline::model_std_kg(double mass_kg) const {
-  // The lumped scale's std: learnt from the car's known masses, or the datasheet's.
+  // The lumped scale's std: learnt from the car's known masses, or the datasheet's (widened by
+  // new tyres once declared).
   const VehicleParams& v = params_.vehicle;
   const double scale_variance =
-      learnt_.learnt() ? learnt_.log_scale_var() : declared_scale_variance(v);
+      learnt_.replaces_datasheet() ? learnt_.log_scale_var() : declared_scale_variance(v);
   const double relative =
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' and the converter map's errors move the mass by their share of it, in

@@ -278,6 +278,26 @@ TEST(KnownMassTest, DeclaredNewTyresWidenTheIntervalThatTheOldScaleNoLongerEarns
   EXPECT_GE(e2.ci_high_kg, 1800.0);
 }
 
+// New tyres on a car that learnt nothing: the config's radius is no longer the tyres', so the
+// interval's scale part is the datasheet's widened by the tyres' 2 %.
+TEST(KnownMassTest, NewTyresOnACarThatLearntNothingWidenItsDatasheetInterval) {
+  const PipelineParams p = scaled_car();
+  const std::vector<Sample> samples = scaled_drive(1800.0, 0.0, 2, p.vehicle);
+  Pipeline plain(p);
+  const Estimate e1 = drive(plain, samples);
+  Pipeline declared(p);
+  declared.tyres_changed();
+  EXPECT_FALSE(declared.learnt_scale().learnt());
+  const Estimate e2 = drive(declared, samples);
+  EXPECT_DOUBLE_EQ(e2.mass_kg, e1.mass_kg);
+  const double tyres = p.estimator.learning.tyre_change_std_fraction;
+  const double floor = p.estimator.model_error_std_fraction;
+  const double declared_var = declared_scale_variance(p.vehicle);
+  EXPECT_NEAR(e1.mass_model_std_kg / e1.mass_kg, std::sqrt(declared_var + floor * floor), 0.002);
+  EXPECT_NEAR(e2.mass_model_std_kg / e2.mass_kg,
+              std::sqrt(declared_var + tyres * tyres + floor * floor), 0.002);
+}
+
 TEST(KnownMassTest, ResetForgetsWhatWasLearnt) {
   const PipelineParams p = scaled_car();
   Pipeline first(p);

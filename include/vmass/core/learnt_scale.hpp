@@ -112,6 +112,9 @@ class LearntScale {
   double log_scale_var() const;  ///< and its variance
   /// Something measured it: a known mass or a static anchor.
   bool learnt() const { return state_.evidence > 0 || state_.anchors > 0; }
+  /// The belief is no longer the config's datasheet: something measured it, or new tyres
+  /// widened it (the config's radius is not theirs). The interval then takes its variance.
+  bool replaces_datasheet() const { return learnt() || state_.tyre_changes > 0; }
   const LearntScaleState& state() const { return state_; }
 
   /// One drive's evidence: log kappa and its variance (> 0).
