@@ -24,6 +24,9 @@ std::string DriverProfile::validate() const {
     }
   }
   if (circle && !(circle->radius_m > 5.0)) return "driver.circle.radius_m must be > 5";
+  if (hold_reached_speed_from_s && !(*hold_reached_speed_from_s >= 0.0)) {
+    return "driver.hold_reached_speed_from_s must be >= 0";
+  }
   return "";
 }
 
@@ -51,6 +54,7 @@ Driver::Driver(const DriverParams& params, const DriverProfile& profile, const T
 void Driver::reset(double t_s, const VehicleState& s) {
   speed_integral_ = 0.0;
   radial_integral_ = 0.0;
+  held_speed_mps_.reset();
   const bool hold = profile_.speed_mps(t_s) <= 0.0 && s.vx_mps < kHoldSpeedMps;
   brake_pressure_pa_ = hold ? p_.hold_pressure_pa : 0.0;
   steering_rad_ = profile_.circle ? 0.0 : open_loop_steering(t_s);
@@ -98,8 +102,13 @@ double Driver::circle_steering(double dt_s, const VehicleState& s) {
 DriverCommand Driver::update(double t_s, double dt_s, const VehicleState& s) {
   DriverCommand cmd;
   const double v = s.vx_mps;
-  const double v_ref = profile_.speed_mps(t_s);
-  const double a_ref = profile_.speed_mps.slope(t_s);
+  if (profile_.hold_reached_speed_from_s && !held_speed_mps_ &&
+      t_s >= *profile_.hold_reached_speed_from_s) {
+    held_speed_mps_ = v;
+    speed_integral_ = 0.0;
+  }
+  const double v_ref = held_speed_mps_ ? *held_speed_mps_ : profile_.speed_mps(t_s);
+  const double a_ref = held_speed_mps_ ? 0.0 : profile_.speed_mps.slope(t_s);
   double pressure_cmd = 0.0;
   if (v_ref <= 0.0 && v < kHoldSpeedMps) {
     pressure_cmd = p_.hold_pressure_pa;

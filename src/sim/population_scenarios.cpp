@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "paper_roads.hpp"
@@ -92,8 +93,11 @@ class ProfileBuilder {
     p.speed_mps = PiecewiseLinear(speed_);
     p.steering_wheel_angle_rad = PiecewiseLinear(steer_);
     p.steering_sines = sines_;
+    p.hold_reached_speed_from_s = hold_reached_from_;
     return p;
   }
+  /// From now + s on, the speed controller holds whatever speed the vehicle has reached.
+  void hold_reached_speed_after(double s) { hold_reached_from_ = t_ + s; }
 
  private:
   void hold(double s) {
@@ -112,6 +116,7 @@ class ProfileBuilder {
   double t_ = 0.0;
   double v_ = 0.0;
   std::vector<PiecewiseLinear::Point> speed_, steer_;
+  std::optional<double> hold_reached_from_;
   std::vector<SteeringSine> sines_;
 };
 
@@ -439,12 +444,20 @@ void sensor_faults_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b
 // --- truck drives (issue 29): what a tractor-trailer's recordings hold ----------------------
 
 // Pulling away with the accelerator floored: a reference no truck follows, so the torque (then
-// the power) sits at its limit for 30-60 s, then a long cruise held by the speed controller's
-// small corrections.
-void truck_launch(ProfileBuilder& b, RandomStream& rng) {
+// the power) sits at its limit, then a long cruise held by the speed controller's small
+// corrections. Returns when the accelerator is floored.
+double truck_launch(ProfileBuilder& b, RandomStream& rng) {
   b.stand(rng.uniform(3, 8));
+  const double launch_s = b.time();
   b.change_to(200 * kKmh, 6.0);
   b.cruise(300);
+  return launch_s;
+}
+
+// The driver sets the cruise at the speed reached after 30-60 s floored (from `start_s`), as
+// in a partner's recordings. Drawn last, so that the drive's other draws stay as they were.
+void cruise_after_floored(ProfileBuilder& b, RandomStream& rng, double start_s) {
+  b.hold_reached_speed_after(start_s - b.time() + rng.uniform(30, 60));
 }
 
 // A grade over distance that rises and falls sinusoidally (amplitude and wavelength drawn).
@@ -462,8 +475,9 @@ PiecewiseLinear rolling_grade(RandomStream& rng, double length_m) {
 void truck_launch_flat_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
                            PopulationRun&, Built& o) {
   typical(d, g, o);
-  truck_launch(b, g);
+  const double launch_s = truck_launch(b, g);
   o.duration_s = 240.0;
+  cruise_after_floored(b, g, launch_s);
 }
 
 // The gear the gearbox would pick at that speed: the engine nearest the middle of its band.
@@ -497,6 +511,7 @@ void truck_one_gear_flat_run(const DrawnVehicle& d, RandomStream& g, ProfileBuil
                              PopulationRun& r, Built& o) {
   typical(d, g, o);
   truck_one_gear(r, g, b, o);
+  cruise_after_floored(b, g, 0.0);
 }
 
 void truck_one_gear_grade_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
@@ -504,6 +519,7 @@ void truck_one_gear_grade_run(const DrawnVehicle& d, RandomStream& g, ProfileBui
   typical(d, g, o);
   truck_one_gear(r, g, b, o);
   r.physics.road.grade_rad = PiecewiseLinear(3.0 * kDeg);
+  cruise_after_floored(b, g, 0.0);
 }
 
 void truck_one_gear_rolling_run(const DrawnVehicle& d, RandomStream& g, ProfileBuilder& b,
@@ -511,6 +527,7 @@ void truck_one_gear_rolling_run(const DrawnVehicle& d, RandomStream& g, ProfileB
   typical(d, g, o);
   truck_one_gear(r, g, b, o);
   r.physics.road.grade_rad = rolling_grade(g, 7000.0);
+  cruise_after_floored(b, g, 0.0);
 }
 
 // Pulling away to a town speed, holding it, stopping: `cycles` times.
@@ -587,9 +604,10 @@ const std::vector<ScenarioEntry>& registry() {
        truck_launch_flat_run, true},
       {"truck_one_gear_flat", "truck: one gear, never braking, floored from 40-55 km/h, cruise",
        truck_one_gear_flat_run, true},
-      {"truck_one_gear_grade", "truck: one gear, never braking, floored up a 3 degree grade",
+      {"truck_one_gear_grade",
+       "truck: one gear, never braking, floored up a 3 degree grade, cruise",
        truck_one_gear_grade_run, true},
-      {"truck_one_gear_rolling", "truck: one gear, never braking, floored, rolling hills",
+      {"truck_one_gear_rolling", "truck: one gear, never braking, floored, cruise, rolling hills",
        truck_one_gear_rolling_run, true},
       {"truck_coupling", "tractor: solo, a semi-trailer (+100-200 %) coupled at a stop, uncoupled",
        truck_coupling_run, true},

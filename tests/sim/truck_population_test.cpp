@@ -99,6 +99,32 @@ TEST(SimTruckPopulation, OneGearDriveNeverShiftsNorBrakes) {
   EXPECT_GT(hi->speed_mps - lo->speed_mps, 5.0);  // floored, then drifting on the hills
 }
 
+// As a partner's recordings: floored 30-60 s in its one gear, then the speed controller holds
+// the speed reached, its torque well off the limit, so the drive has a change of force in it.
+TEST(SimTruckPopulation, OneGearDriveIsFlooredThenCruisesAtTheSpeedReached) {
+  const DrawnVehicle d = draw_tractor(kTruckFirstSeed);
+  PopulationRun run;
+  const SimulationResult r = simulate_run(d, "truck_one_gear_flat", &run);
+  const PowertrainParams& p = run.physics.vehicle.powertrain;
+  const double radius_m = r.vehicle.wheel_radius_m;
+  const auto at = [&](double t_s) {
+    return *std::find_if(r.truth.begin(), r.truth.end(), [&](const TruthRow& t) {
+      return static_cast<double>(t.time_us) >= t_s * 1e6;
+    });
+  };
+  for (const double t_s : {5.0, 15.0, 29.0}) {
+    const TruthRow t = at(t_s);
+    EXPECT_GT(t.wheel_torque_nm, 0.95 * limit_nm(p, radius_m, t)) << t_s;
+  }
+  const double cruise_mps = at(70.0).speed_mps;
+  for (const double t_s : {70.0, 120.0, 180.0, 235.0}) {
+    const TruthRow t = at(t_s);
+    EXPECT_LT(t.wheel_torque_nm, 0.9 * limit_nm(p, radius_m, t)) << t_s;
+    EXPECT_NEAR(t.speed_mps, cruise_mps, 0.5) << t_s;
+  }
+  EXPECT_GT(cruise_mps, at(0.0).speed_mps + 2.0);
+}
+
 // The trailer arrives and leaves while the tractor stands, and weighs 100-200 % of it.
 TEST(SimTruckPopulation, CouplingAddsATrailerAtAStopAndRemovesItAtAnother) {
   const DrawnVehicle d = draw_tractor(kTruckFirstSeed + 3);

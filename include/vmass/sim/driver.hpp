@@ -7,6 +7,9 @@
 //   with regeneration (regen_max_force_n > 0, above regen_min_speed_mps), a negative F_dem goes
 //   to a negative torque demand first, down to -regen_max_force_n r_w, the rest to the brakes
 //   v_ref = 0 and v < 0.5 m/s: hold the car with a fixed pressure, no torque.
+// From hold_reached_speed_from_s on (if set), v_ref is the speed the car had then and the
+// integrator starts again: a speed controller engaged at the current speed, as a truck driver
+// sets the cruise after pulling up with the accelerator floored.
 // The pressure builds through a first-order lag (hydraulics). Torque lag is in the Powertrain.
 //
 // Steering: the steering-wheel angle (ISO: positive left) is either an open-loop profile
@@ -45,7 +48,8 @@ struct DriverProfile {
   PiecewiseLinear speed_mps{0.0};                 ///< over time, s
   PiecewiseLinear steering_wheel_angle_rad{0.0};  ///< over time, s (open loop)
   std::vector<SteeringSine> steering_sines;
-  std::optional<CircleCourse> circle;  ///< closed loop; overrides the open loop
+  std::optional<CircleCourse> circle;               ///< closed loop; overrides the open loop
+  std::optional<double> hold_reached_speed_from_s;  ///< then v_ref = the speed reached, held
 
   std::string validate() const;
 };
@@ -98,6 +102,7 @@ class Driver {
   double brake_pressure_pa_ = 0.0;
   double radial_integral_ = 0.0;
   double steering_rad_ = 0.0;
+  std::optional<double> held_speed_mps_;  ///< latched at hold_reached_speed_from_s
 };
 
 }  // namespace vmass::sim
