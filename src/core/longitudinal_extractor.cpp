@@ -70,6 +70,7 @@ std::string LongitudinalParams::validate() const {
   c.positive("scale_memory_s", scale_memory_s);
   c.positive("weight", weight);
   c.nested(lag.validate());
+  c.nested(driveline_mode.validate());
   return c.message();
 }
 
@@ -91,6 +92,7 @@ LongitudinalExtractor::LongitudinalExtractor(const VehicleParams& vehicle,
           static_cast<std::size_t>(differencing.steps()) + 1 +
           static_cast<std::size_t>(std::lround(params.lag.max_lag_s * differencing.tick_rate_hz))),
       lag_(params.lag, differencing.tick_rate_hz),
+      mode_(params.driveline_mode, differencing.tick_rate_hz),
       y_by_lag_(static_cast<std::size_t>(lag_.max_lag_ticks()) + 1, 0.0),
       pending_(static_cast<std::size_t>(
                    std::ceil(params.lag.min_evidence_s * differencing.tick_rate_hz)) +
@@ -141,6 +143,7 @@ void LongitudinalExtractor::restart_stretch() {
   speed_filter_.reset();
   brake_filter_.reset();
   ratio_tracker_.restart();
+  mode_.restart();
   has_previous_speed_ = false;
   clean_ticks_ = 0;
 }
@@ -239,12 +242,16 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   const bool shifted = s.has(Input::kGear) && s.gear != previous_gear_;
   ticks_since_shift_ = shifted ? 0 : ticks_since_shift_ + 1;
   previous_gear_ = gear_identity(s);
-  in->force_n = force;
+  const bool clean = (!brakes || params_.use_braking) &&
+                     (force_n_reported >= 0.0 || vehicle_.electric_drive || params_.use_overrun) &&
+                     gear_ok && std::abs(s.speed_mps) >= params_.min_speed_mps;
+  // A car that sends no gear is taken as one gear (a single-speed electric drive, mostly).
+  const int mode_gear = s.has(Input::kGear) || derive_ratio_ ? previous_gear_ : 1;
+  mode_.observe(force_n_reported, s.accel_x_mps2, mode_gear, clean);
+  in->force_n = force - force_n_reported + mode_.hub_force_n(force_n_reported, mode_gear);
   in->converter_force_n = multiplied ? engine_path_force * (converter.torque_ratio - 1.0) : 0.0;
   in->converter_multiplying = multiplied && converter.torque_ratio > 1.0;
-  const bool overrun = force_n_reported < 0.0 && !vehicle_.electric_drive;
-  in->clean = (!brakes || params_.use_braking) && (!overrun || params_.use_overrun) && gear_ok &&
-              std::abs(s.speed_mps) >= params_.min_speed_mps;
+  in->clean = clean;
   return true;
 }
 

@@ -142,6 +142,24 @@ TEST(Config, TheRotatingTermsSourceIsReadAndChecked) {
       << bad.error;
 }
 
+TEST(Config, TheDrivelineModeIsReadAndChecked) {
+  const std::string section = "estimator:\n  longitudinal:\n    driveline_mode:\n";
+  const DrivelineModeParams defaults = load_config_text(kMinimal, "default.yaml")
+                                           .config->pipeline.estimator.longitudinal.driveline_mode;
+  EXPECT_TRUE(defaults.enabled);
+  EXPECT_DOUBLE_EQ(defaults.min_evidence_s, 10.0);
+  const ConfigLoad ok = load_config_text(
+      std::string(kMinimal) + section + "      enabled: false\n      candidates: 12\n", "m.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_FALSE(ok.config->pipeline.estimator.longitudinal.driveline_mode.enabled);
+  EXPECT_EQ(ok.config->pipeline.estimator.longitudinal.driveline_mode.candidates, 12);
+  const ConfigLoad bad =
+      load_config_text(std::string(kMinimal) + section + "      band_high_hz: 0.5\n", "m.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("estimator.longitudinal.driveline_mode.band_high_hz"), std::string::npos)
+      << bad.error;
+}
+
 TEST(Config, TheTyreChangesWideningIsReadAndChecked) {
   const std::string section = "estimator:\n  learning:\n    tyre_change_std_fraction: ";
   EXPECT_DOUBLE_EQ(load_config_text(kMinimal, "default.yaml")

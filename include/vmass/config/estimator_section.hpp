@@ -92,6 +92,20 @@ inline constexpr std::array<Field<LagParams>, 7> kLagFields{{
     {"provisional_std_s", &LagParams::provisional_std_s},
 }};
 
+inline constexpr std::array<Field<DrivelineModeParams>, 11> kDrivelineModeFields{{
+    {"enabled", &DrivelineModeParams::enabled},
+    {"min_hz", &DrivelineModeParams::min_hz},
+    {"max_hz", &DrivelineModeParams::max_hz},
+    {"candidates", &DrivelineModeParams::candidates},
+    {"damping_ratio", &DrivelineModeParams::damping_ratio},
+    {"band_low_hz", &DrivelineModeParams::band_low_hz},
+    {"band_high_hz", &DrivelineModeParams::band_high_hz},
+    {"max_lag_s", &DrivelineModeParams::max_lag_s},
+    {"min_evidence_s", &DrivelineModeParams::min_evidence_s},
+    {"min_correlation", &DrivelineModeParams::min_correlation},
+    {"min_correlation_gain", &DrivelineModeParams::min_correlation_gain},
+}};
+
 inline constexpr std::array<Field<LateralParams>, 7> kLateralFields{{
     {"enabled", &LateralParams::enabled},
     {"max_abs_accel_y_mps2", &LateralParams::max_abs_accel_y_mps2},
@@ -163,6 +177,9 @@ void walk_estimator_section(Visitor& v, E& e) {
   v.fields(kLongitudinalFields, e.longitudinal);
   v.begin("lag");
   v.fields(kLagFields, e.longitudinal.lag);
+  v.end();
+  v.begin("driveline_mode");
+  v.fields(kDrivelineModeFields, e.longitudinal.driveline_mode);
   v.end();
   v.end();
   v.begin("lateral");

@@ -13,9 +13,11 @@
 //
 // What makes the differenced model hold on real signals:
 //   - the same low-pass (estimator.filter_cutoff_hz) on F, a_x and v' before differencing over
-//     estimator.differencing_dt_s: the driveline's torsional mode, the accelerometer's
-//     vibration and the bus's quantisation lie above it, and M da = dF still holds between
-//     filtered signals;
+//     estimator.differencing_dt_s: the driveline's ringing, the accelerometer's vibration and
+//     the bus's quantisation lie above it, and M da = dF still holds between filtered signals;
+//   - the driveline's force is run through its gear's torsional mode, as DrivelineMode
+//     identifies it from the accelerometer: below its resonance the mode amplifies the hub's
+//     torque, which the low-pass keeps (a truck's first gear rings at 1.2-2.5 Hz);
 //   - the force is taken at the lag the LagEstimator identifies (the lag at which the pairs fit
 //     best), so that it is paired with the acceleration of the same instant; the excited pairs
 //     seen before the lag is identified are kept (verdict awaiting_lag) and released, at the
@@ -47,6 +49,7 @@
 #include "vmass/core/converter_map.hpp"
 #include "vmass/core/delay_line.hpp"
 #include "vmass/core/differencing_history.hpp"
+#include "vmass/core/driveline_mode.hpp"
 #include "vmass/core/extraction.hpp"
 #include "vmass/core/lag_estimator.hpp"
 #include "vmass/core/low_pass_filter.hpp"
@@ -100,6 +103,7 @@ struct LongitudinalParams {
   bool subtract_aero = true;
   double weight = 1.0;
   LagParams lag;
+  DrivelineModeParams driveline_mode;
 
   std::string validate() const;
 };
@@ -233,6 +237,7 @@ class LongitudinalExtractor {
   DifferencingHistory<Record> history_;
   DelayLine<double> filtered_force_;  ///< the last max_lag + window ticks of filtered force
   LagEstimator lag_;
+  DrivelineMode mode_;  ///< kept through restarts and loads: a property of the vehicle
   std::vector<double> y_by_lag_;
   // Pairs awaiting the lag: a ring of their terms and their y at every lag.
   std::vector<PairTerms> pending_;
