@@ -3,32 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vmass/core/constants.hpp"
 #include "vmass/core/param_check.hpp"
 
 namespace vmass {
 
 namespace {
 
-constexpr double kButterworthDamping = 0.7071067811865476;
 constexpr double kWarmUpS = 1.0;         ///< band-pass transients after a restart
 constexpr double kIdentifyEveryS = 1.0;  ///< how often a gear's evidence is re-read
 constexpr double kLagStepS = 0.02;       ///< the lag grid
-
-// Bilinear transform, pre-warped at f_hz, of w^2 / (s^2 + 2 zeta w s + w^2) (low-pass) or
-// s^2 / (...) (high-pass).
-SecondOrderSection second_order(double f_hz, double zeta, double rate_hz, bool high_pass) {
-  const double k = std::tan(kPi * f_hz / rate_hz);
-  const double k2 = k * k;
-  const double norm = 1.0 / (1.0 + 2.0 * zeta * k + k2);
-  SecondOrderSection s;
-  s.b0 = (high_pass ? 1.0 : k2) * norm;
-  s.b1 = (high_pass ? -2.0 : 2.0) * s.b0;
-  s.b2 = s.b0;
-  s.a1 = 2.0 * (k2 - 1.0) * norm;
-  s.a2 = (1.0 - 2.0 * zeta * k + k2) * norm;
-  return s;
-}
 
 }  // namespace
 
@@ -48,29 +31,16 @@ std::string DrivelineModeParams::validate() const {
   return c.message();
 }
 
-double SecondOrderSection::step(double x) {
-  const double y = b0 * x + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2;
-  x2 = x1;
-  x1 = x;
-  y2 = y1;
-  y1 = y;
-  return y;
-}
-
-void SecondOrderSection::settle(double x, double static_gain) {
-  x1 = x2 = x;
-  y1 = y2 = x * static_gain;
-}
-
 DrivelineMode::DrivelineMode(const DrivelineModeParams& params, double tick_rate_hz)
     : params_(params),
       rate_hz_(tick_rate_hz),
       max_lag_(static_cast<int>(std::lround(params.max_lag_s * tick_rate_hz))),
       lag_step_(std::max(1, static_cast<int>(std::lround(kLagStepS * tick_rate_hz)))),
-      force_high_(second_order(params.band_low_hz, kButterworthDamping, tick_rate_hz, true)),
+      force_high_(
+          SecondOrderSection::high_pass(params.band_low_hz, kButterworthDamping, tick_rate_hz)),
       // Below the Nyquist frequency whatever the tick rate.
-      force_low_(second_order(std::min(params.band_high_hz, 0.45 * tick_rate_hz),
-                              kButterworthDamping, tick_rate_hz, false)),
+      force_low_(SecondOrderSection::low_pass(std::min(params.band_high_hz, 0.45 * tick_rate_hz),
+                                              kButterworthDamping, tick_rate_hz)),
       accel_high_(force_high_),
       accel_low_(force_low_) {
   const double nyquist_margin = 0.4 * tick_rate_hz;
@@ -79,7 +49,7 @@ DrivelineMode::DrivelineMode(const DrivelineModeParams& params, double tick_rate
                                               static_cast<double>(i) / (params.candidates - 1));
     if (f >= nyquist_margin) break;
     candidate_hz_.push_back(f);
-    candidate_modes_.push_back(second_order(f, params.damping_ratio, tick_rate_hz, false));
+    candidate_modes_.push_back(SecondOrderSection::low_pass(f, params.damping_ratio, tick_rate_hz));
   }
   history_.assign(static_cast<std::size_t>(max_lag_ + 1) * candidate_count(), 0.0);
   best_fit_.assign(candidate_count(), -1.0);
@@ -192,7 +162,7 @@ double DrivelineMode::hub_force_n(double force_n, int gear) {
   }
   if (f != applied_hz_) {
     // A new gear (or a refined f_n): new coefficients, the shaft's state carried over.
-    const SecondOrderSection c = second_order(f, params_.damping_ratio, rate_hz_, false);
+    const SecondOrderSection c = SecondOrderSection::low_pass(f, params_.damping_ratio, rate_hz_);
     applied_.b0 = c.b0;
     applied_.b1 = c.b1;
     applied_.b2 = c.b2;

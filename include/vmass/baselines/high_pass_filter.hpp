@@ -10,6 +10,8 @@
 // so a restart after a hole makes no step transient. Not thread-safe; no allocation.
 #pragma once
 
+#include "vmass/core/second_order_section.hpp"
+
 namespace vmass::baselines {
 
 class HighPassFilter {
@@ -23,8 +25,7 @@ class HighPassFilter {
  private:
   bool enabled_ = false;
   bool primed_ = false;
-  double b0_ = 0.0, b1_ = 0.0, b2_ = 0.0, a1_ = 0.0, a2_ = 0.0;
-  double x1_ = 0.0, x2_ = 0.0, y1_ = 0.0, y2_ = 0.0;
+  SecondOrderSection section_;
 };
 
 }  // namespace vmass::baselines

@@ -33,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "vmass/core/second_order_section.hpp"
+
 namespace vmass {
 
 struct DrivelineModeParams {
@@ -49,16 +51,6 @@ struct DrivelineModeParams {
   double min_correlation_gain = 0.02;  ///< over "none"
 
   std::string validate() const;
-};
-
-/// A second-order section, direct form I (the mode, and the identification's band-pass).
-struct SecondOrderSection {
-  double b0 = 1.0, b1 = 0.0, b2 = 0.0, a1 = 0.0, a2 = 0.0;
-  double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
-
-  double step(double x);
-  /// The state of a steady input x (the output equal to x times the static gain).
-  void settle(double x, double static_gain);
 };
 
 class DrivelineMode {

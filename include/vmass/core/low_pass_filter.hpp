@@ -8,6 +8,8 @@
 // Not thread-safe; no allocation.
 #pragma once
 
+#include "vmass/core/second_order_section.hpp"
+
 namespace vmass {
 
 class LowPassFilter {
@@ -24,8 +26,7 @@ class LowPassFilter {
  private:
   bool enabled_ = false;
   bool primed_ = false;
-  double b0_ = 1.0, b1_ = 0.0, b2_ = 0.0, a1_ = 0.0, a2_ = 0.0;
-  double x1_ = 0.0, x2_ = 0.0, y1_ = 0.0, y2_ = 0.0;
+  SecondOrderSection section_;
 };
 
 }  // namespace vmass
