@@ -162,6 +162,7 @@ void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   regressor_->reset(prior);
   supervisor_.on_regressor_reset();
   reset_extractors(prior.mass_kg);
+  decide_term_fit();
   has_prior_ = true;
   has_plausible_ = false;
   prior_reason_ = reason;
@@ -221,6 +222,7 @@ void Pipeline::add_to_load_sums(const Extraction& extraction, const PairEvent& e
   if (!extraction.has_pair() || event.verdict != PairVerdict::kAccepted) return;
   static_anchor_.add(extraction.pair);
   load_sums_.add(extraction.pair, uncorrected_y_n(extraction.pair), gear_masses_.gears());
+  term_sums_.add(extraction.pair, params_.estimator.bayes.noise_std_guess_n);
 }
 
 void Pipeline::end_gear_evidence() {
@@ -230,6 +232,8 @@ void Pipeline::end_gear_evidence() {
   }
   load_sums_ = GearPairSums{};
   sums_before_stop_ = GearPairSums{};
+  term_sums_ = PairTermSums{};
+  term_sums_before_stop_ = PairTermSums{};
 }
 
 LearntGearMasses Pipeline::gear_masses_if_ended() const {
@@ -254,6 +258,7 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
   if (load_monitor_.step(sample)) {
     belief_before_stop_ = regressor_->state();
     sums_before_stop_ = load_sums_;
+    term_sums_before_stop_ = term_sums_;
     // The challenger's extractor starts as on a fresh drive, at the challenger's prior: its lag,
     // noise and reference mass of the load before would misread today's.
     monitor_longitudinal_.forget_load();
@@ -286,12 +291,15 @@ void Pipeline::adopt_challenger() {
   }
   load_sums_ = load_sums_.since(sums_before_stop_);
   sums_before_stop_ = GearPairSums{};
+  term_sums_ = term_sums_.since(term_sums_before_stop_);
+  term_sums_before_stop_ = PairTermSums{};
   if (params_.estimator.type == RegressorType::kRls) {
     rls_ = load_monitor_.challenger_rls();
   } else {
     bayes_ = load_monitor_.challenger_bayes();
   }
   load_monitor_.dismiss();
+  decide_term_fit();
   has_plausible_ = false;
   supervisor_.on_regressor_reset();
   // The belief's lag and noise pool two loads; the monitor's are (mostly) of the new load.
@@ -357,6 +365,8 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   pair_scale_ = scale_for_pairs();
   load_sums_ = GearPairSums{};  // the snapshot took their evidence (gear_masses_if_ended)
   sums_before_stop_ = GearPairSums{};
+  term_sums_ = PairTermSums{};
+  term_sums_before_stop_ = PairTermSums{};
   has_prior_ = false;
   has_plausible_ = false;
   prior_reason_ = StatusReason::kWaitingForStandstill;
@@ -451,6 +461,8 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.gear_masses = gear_masses_if_ended().state();
   s.known_mass = known_mass_;
   s.pair_scale = pair_scale_;
+  s.pair_term_fit_applies = term_fit_applies_;
+  s.pair_term_sums = term_sums_.state();
   return s;
 }
 
@@ -464,7 +476,8 @@ bool Pipeline::fits(const PipelineSnapshot& s) const {
       !(prior.mu_std_n > 0.0 && std::isfinite(prior.mu_std_n)) || s.pairs_used < 0 ||
       (s.has_reference &&
        (!std::isfinite(s.reference_deflection_m) || !std::isfinite(s.reference_deflection_std_m) ||
-        s.reference_deflection_std_m < 0.0))) {
+        s.reference_deflection_std_m < 0.0)) ||
+      !PairTermSums::implausible(s.pair_term_sums).empty()) {
     return false;
   }
   for (const BlockCounters& b : s.blocks) {
@@ -530,6 +543,10 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   applied_gear_masses_ = gear_masses_;
   load_sums_ = GearPairSums{};  // the snapshot's gear masses hold their evidence
   sums_before_stop_ = GearPairSums{};
+  // The belief restored holds the load's pairs: so do its terms' sums.
+  term_sums_ = PairTermSums::restored(s.pair_term_sums);
+  term_sums_before_stop_ = PairTermSums{};
+  term_fit_applies_ = s.pair_term_fit_applies;
   known_mass_ = s.known_mass;
   pair_scale_ = s.pair_scale;
   supervisor_.on_regressor_reset();
@@ -552,7 +569,7 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   restored_time_us_ = s.time_us;
   load_unchecked_ = false;
 
-  const RegressorState state = regressor_->state();
+  const RegressorState state = with_term_shift(regressor_->state());
   has_plausible_ = false;
   publish_state(state);
   estimate_.initial_mass_kg = prior.mass_kg;
@@ -724,7 +741,7 @@ void Pipeline::refresh_belief() {
   }
   RegressorState state = belief_state();
   const bool provisional = provisional_state(&state);
-  publish_state(state);
+  publish_state(with_term_shift(state));
   const LagEstimator& lag = longitudinal_.lag();
   estimate_.driveline_lag_s = lag.identified() ? lag.lag_s() : -1.0;
   if (state.pairs_used > 0) {
@@ -851,10 +868,38 @@ double Pipeline::model_std_kg(double mass_kg) const {
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' and the converter map's errors move the mass by their share of it, in
   // kg (a truck's low gears, an automatic pulling away).
+  if (fits_pair_terms()) {
+    return std::hypot(relative * std::abs(mass_kg), pair_term_fit().mass_std_kg);
+  }
   const double rotating_kg = rotating_std_kg(mass_kg);
   const double converter_kg = kUniformStdPerBound * v.torque_converter_map_accuracy_fraction *
                               converter_sensitivity_.sensitivity_kg();
   return std::hypot(relative * std::abs(mass_kg), rotating_kg, converter_kg);
+}
+
+void Pipeline::decide_term_fit() {
+  // What the car has learnt (its gears' masses, the lumped scale a known mass gave) already
+  // holds the terms' errors, as they were on the drives it learnt from.
+  term_fit_applies_ =
+      params_.estimator.fit_pair_terms && !applied_gear_masses_.learnt() && !learnt_.learnt();
+}
+
+bool Pipeline::fits_pair_terms() const { return term_fit_applies_ && term_sums_.pairs() >= 2; }
+
+PairTermFit Pipeline::pair_term_fit() const {
+  if (!fits_pair_terms()) return PairTermFit{};
+  const VehicleParams& v = params_.vehicle;
+  return term_sums_.fit({kUniformStdPerBound * v.rotating_mass_accuracy_fraction,
+                         kUniformStdPerBound * v.torque_converter_map_accuracy_fraction});
+}
+
+RegressorState Pipeline::with_term_shift(RegressorState state) const {
+  if (state.pairs_used == 0) return state;
+  const double shift_kg = pair_term_fit().mass_shift_kg;
+  state.mass_kg += shift_kg;
+  state.ci_low_kg += shift_kg;
+  state.ci_high_kg += shift_kg;
+  return state;
 }
 
 double Pipeline::rotating_std_kg(double mass_kg) const {

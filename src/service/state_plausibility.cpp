@@ -6,6 +6,7 @@
 
 #include "vmass/core/learnt_gear_masses.hpp"
 #include "vmass/core/learnt_scale.hpp"
+#include "vmass/core/pair_term_fit.hpp"
 #include "vmass/core/plausible_band.hpp"
 #include "vmass/core/static_initializer.hpp"
 
@@ -136,6 +137,7 @@ void check_learnt(const PipelineSnapshot& s, const PipelineParams& params, Check
         learnt_gear_masses_for(params.vehicle, learning, params.estimator.model_error_std_fraction);
     if (std::string why = gears.implausible(s.gear_masses); !why.empty()) c.fail(why);
   }
+  if (std::string why = PairTermSums::implausible(s.pair_term_sums); !why.empty()) c.fail(why);
   c.within("pair scale", s.pair_scale, std::exp(-learning.max_abs_log_scale),
            std::exp(learning.max_abs_log_scale), "");
   if (!s.known_mass.active) return;

@@ -18,7 +18,9 @@ namespace vmass::service {
 namespace {
 
 constexpr const char* kMagic = "vmass-state";
-constexpr int kVersion = 6;
+constexpr int kVersion = 7;
+/// Still read: all but the current load's pair-term fit (it does not apply).
+constexpr int kVersionWithoutPairTerms = 6;
 /// Still read: all but the tyre changes (none; every known mass counts as since the tyres).
 constexpr int kVersionWithoutTyres = 5;
 constexpr int kVersionWithoutAnchors = 4;  ///< still read: all but the static anchors (none)
@@ -207,6 +209,14 @@ void write_gear_masses(std::string* out, const GearMassesState& g) {
   }
 }
 
+/// Format version 7: the current load's pair-term fit (PairTermSums), the normal matrix row-major.
+void write_pair_terms(std::string* out, const PipelineSnapshot& s) {
+  put_int(out, "pair_term_fit_applies", s.pair_term_fit_applies ? 1 : 0);
+  put_int(out, "pair_term_pairs", s.pair_term_sums.pairs);
+  put_list(out, "pair_term_normal", s.pair_term_sums.normal.data(), 16);
+  put_list(out, "pair_term_moment", s.pair_term_sums.moment.data(), 4);
+}
+
 }  // namespace
 
 std::uint64_t learnt_fingerprint(const PipelineParams& p) {
@@ -249,6 +259,7 @@ std::string format_state(const SavedState& state) {
   for (const StateField& field : kAnchorFields) write_field(&out, field, s);
   for (const StateField& field : kTyreFields) write_field(&out, field, s);
   write_gear_masses(&out, s.gear_masses);
+  write_pair_terms(&out, s);
   std::snprintf(hex, sizeof hex, "%016" PRIx64, fnv1a(out.data(), out.size()));
   out += std::string("checksum ") + hex + "\n";
   return out;
@@ -375,6 +386,20 @@ std::string read_header_fields(const ValueReader& in, SavedState* out) {
   return "";
 }
 
+std::string read_pair_terms(const ValueReader& in, PipelineSnapshot* s) {
+  long long n = 0;
+  if (std::string e = in.integer("pair_term_fit_applies", &n); !e.empty()) return e;
+  if (n != 0 && n != 1) return "pair_term_fit_applies: not 0 or 1";
+  s->pair_term_fit_applies = n == 1;
+  if (std::string e = in.integer("pair_term_pairs", &n); !e.empty()) return e;
+  s->pair_term_sums.pairs = static_cast<long>(n);
+  if (std::string e = in.reals("pair_term_normal", 16, s->pair_term_sums.normal.data());
+      !e.empty()) {
+    return e;
+  }
+  return in.reals("pair_term_moment", 4, s->pair_term_sums.moment.data());
+}
+
 std::string read_gear_masses(const ValueReader& in, GearMassesState* g) {
   long long n = 0;
   if (std::string e = in.integer("learnt_gears", &n); !e.empty()) return e;
@@ -439,8 +464,9 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   }
   const std::string& version_text = values[kMagic];
   int version = 0;
-  for (int known : {kVersion, kVersionWithoutTyres, kVersionWithoutAnchors, kVersionKgReference,
-                    kVersionWithoutGears, kVersionWithoutLearnt}) {
+  for (int known :
+       {kVersion, kVersionWithoutPairTerms, kVersionWithoutTyres, kVersionWithoutAnchors,
+        kVersionKgReference, kVersionWithoutGears, kVersionWithoutLearnt}) {
     if (version_text == std::to_string(known)) version = known;
   }
   if (version == 0) {
@@ -463,7 +489,7 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   out.snapshot.learnt_saved = version != kVersionWithoutLearnt;
   out.snapshot.gear_masses_saved = version >= kVersionWithoutAnchors;
   const bool anchors_saved = version >= kVersionWithoutTyres;
-  const bool tyres_saved = version >= kVersion;
+  const bool tyres_saved = version >= kVersionWithoutPairTerms;
   if (out.snapshot.learnt_saved) {
     std::string hex;
     if (std::string e = in.text("learnt_fingerprint", &hex); !e.empty()) return fail(e);
@@ -486,6 +512,9 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   }
   if (out.snapshot.gear_masses_saved) {
     if (std::string e = read_gear_masses(in, &out.snapshot.gear_masses); !e.empty()) return fail(e);
+  }
+  if (version >= kVersion) {
+    if (std::string e = read_pair_terms(in, &out.snapshot); !e.empty()) return fail(e);
   }
   *state = out;
   return true;

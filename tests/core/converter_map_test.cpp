@@ -91,8 +91,9 @@ TEST(ConverterMap, UnlockedTheEngineTorqueThroughTheMapGivesTheMass) {
 }
 
 // A pipeline on the automatic's bus whose real converter multiplies more than its map says.
-Estimate after_drive_through_converter(double map_accuracy, double true_stall) {
+Estimate after_drive_through_converter(double map_accuracy, double true_stall, bool fit_terms) {
   PipelineParams p;
+  p.estimator.fit_pair_terms = fit_terms;
   p.vehicle = automatic_vehicle();
   p.suspension = testing::test_suspension();
   p.vehicle.wheel_torque_accuracy_fraction = 0.0;
@@ -117,14 +118,27 @@ TEST(ConverterMap, TheIntervalHoldsTheMapsErrorTimesItsShare) {
   // 10 % where the converter multiplies most, in every pair alike.
   const double truth = testing::LongitudinalDrive{}.mass_kg;
   const double true_stall = 1.0 + 1.2 * (kStall - 1.0);
-  const Estimate declared = after_drive_through_converter(0.25, true_stall);
+  const Estimate declared = after_drive_through_converter(0.25, true_stall, false);
   EXPECT_LT(declared.mass_kg, truth * 0.98);  // the map's error lands in the mass ...
   EXPECT_LE(declared.ci_low_kg, truth);       // ... and the declared accuracy in the interval
   EXPECT_GE(declared.ci_high_kg, truth);
   // Declared exact, the same drive ends as sure as the regression alone, and wrong.
-  const Estimate exact = after_drive_through_converter(0.0, true_stall);
+  const Estimate exact = after_drive_through_converter(0.0, true_stall, false);
   EXPECT_LT(exact.ci_high_kg, truth);
   EXPECT_LT(exact.mass_model_std_kg, declared.mass_model_std_kg);
+}
+
+TEST(ConverterMap, TheDrivesPairsTellTheMapsErrorAndTakeItOffTheMass) {
+  // The same drive with the pair terms fitted (the default): the pairs read with and without
+  // the converter multiplying tell its map's error, and the mass no longer carries it.
+  const double truth = testing::LongitudinalDrive{}.mass_kg;
+  const double true_stall = 1.0 + 1.2 * (kStall - 1.0);
+  const Estimate fitted = after_drive_through_converter(0.25, true_stall, true);
+  const Estimate unfitted = after_drive_through_converter(0.25, true_stall, false);
+  EXPECT_NEAR(fitted.mass_kg, truth, 0.01 * truth);
+  EXPECT_LE(fitted.ci_low_kg, truth);
+  EXPECT_GE(fitted.ci_high_kg, truth);
+  EXPECT_LT(fitted.mass_model_std_kg, unfitted.mass_model_std_kg);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "test_drive.hpp"
 #include "vmass/config/config.hpp"
 #include "vmass/service/pipeline_state.hpp"
+#include "vmass/service/state_plausibility.hpp"
 #include "vmass/service/state_store.hpp"
 
 namespace vmass {
@@ -115,6 +116,10 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.gear_masses.reference_share_per_kg, b.gear_masses.reference_share_per_kg);
   EXPECT_EQ(a.gear_masses.reference_applied, b.gear_masses.reference_applied);
   EXPECT_EQ(a.gear_masses.reference_precision, b.gear_masses.reference_precision);
+  EXPECT_EQ(a.pair_term_fit_applies, b.pair_term_fit_applies);
+  EXPECT_EQ(a.pair_term_sums.normal, b.pair_term_sums.normal);
+  EXPECT_EQ(a.pair_term_sums.moment, b.pair_term_sums.moment);
+  EXPECT_EQ(a.pair_term_sums.pairs, b.pair_term_sums.pairs);
 }
 
 class PipelineSnapshotTest : public ::testing::TestWithParam<const char*> {};
@@ -505,6 +510,42 @@ TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   EXPECT_FALSE(service::parse_state(short_row + "checksum " + hex + "\n", &back, &error));
   EXPECT_NE(error.find("learnt_gear_correction_kg"), std::string::npos) << error;
+}
+
+// Format version 7 added the current load's pair-term fit (PairTermSums): it round-trips; a
+// version-6 file loads without it (the fit does not apply to the restored load); sums that no
+// pairs could have summed to are named.
+TEST_F(StateFileTest, ThePairTermFitRoundTripsAndAVersionSixFileStillLoads) {
+  SavedState fitted = state_;
+  fitted.snapshot.pair_term_fit_applies = true;
+  PairTermSumsState& sums = fitted.snapshot.pair_term_sums;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      sums.normal[std::size_t(4 * r + c)] = r == c ? 10.0 + r : 0.125 * (r + c + 1);
+    }
+    sums.moment[std::size_t(r)] = 1650.5 * (r + 1);
+  }
+  sums.pairs = 4321;
+  const std::string text = service::format_state(fitted);
+  SavedState back;
+  std::string error;
+  ASSERT_TRUE(service::parse_state(text, &back, &error)) << error;
+  expect_same(back.snapshot, fitted.snapshot);
+
+  const std::string v6 = as_older_format(
+      text, 6,
+      {"pair_term_fit_applies", "pair_term_pairs", "pair_term_normal", "pair_term_moment"});
+  ASSERT_FALSE(v6.empty());
+  ASSERT_TRUE(service::parse_state(v6, &back, &error)) << error;
+  EXPECT_FALSE(back.snapshot.pair_term_fit_applies);
+  EXPECT_EQ(back.snapshot.pair_term_sums.pairs, 0);
+
+  const PipelineParams params = test_params("bayes");
+  PipelineSnapshot skewed = fitted.snapshot;
+  skewed.pair_term_sums.normal[1] += 1.0;
+  EXPECT_NE(service::implausible_state(skewed, params).find("pair_term_normal"), std::string::npos);
+  Pipeline pipeline(params);
+  EXPECT_FALSE(pipeline.restore(skewed));
 }
 
 // Another rolling radius makes what was learnt wrong: it is dropped and the mass kept. Another

@@ -16,12 +16,13 @@
 
 namespace vmass {
 
-inline constexpr std::array<Field<EstimatorParams>, 6> kEstimatorFields{{
+inline constexpr std::array<Field<EstimatorParams>, 7> kEstimatorFields{{
     {"type", &EstimatorParams::type},
     {"converged_ci_halfwidth_fraction", &EstimatorParams::converged_ci_halfwidth_fraction},
     {"converged_halfwidth_fraction", &EstimatorParams::converged_halfwidth_fraction},
     {"pair_correlation_ticks", &EstimatorParams::pair_correlation_ticks},
     {"model_error_std_fraction", &EstimatorParams::model_error_std_fraction},
+    {"fit_pair_terms", &EstimatorParams::fit_pair_terms},
     {"power_cycle_min_off_s", &EstimatorParams::power_cycle_min_off_s},
 }};
 

@@ -47,6 +47,7 @@
 #include "vmass/core/learnt_scale.hpp"
 #include "vmass/core/load_change_monitor.hpp"
 #include "vmass/core/longitudinal_extractor.hpp"
+#include "vmass/core/pair_term_fit.hpp"
 #include "vmass/core/pair_term_sensitivity.hpp"
 #include "vmass/core/rls_estimator.hpp"
 #include "vmass/core/static_anchor.hpp"
@@ -89,6 +90,10 @@ struct EstimatorParams {
   /// rolling and rotating terms, wheel-speed errors): a floor of the published interval,
   /// in quadrature with the declared accuracies (Estimate::mass_model_std_kg).
   double model_error_std_fraction = 0.01;
+  /// Until the gears' rotating masses are learnt, fit the errors of the configured rotating
+  /// masses and converter map from the load's own pairs (PairTermSums) and take them off the
+  /// mass; the interval keeps what the pairs leave unknown of them.
+  bool fit_pair_terms = true;
   /// A restore whose first input comes more than this after the snapshot (or before it: a
   /// clock that went back) is a power cycle: the vehicle was off, the load may have changed,
   /// and the mass starts afresh. Within it the daemon restarted during a drive (a crash, the
@@ -152,6 +157,10 @@ struct PipelineSnapshot {
   bool static_anchor_pending = false;
   AnchorObservation static_anchor;
   double pair_scale = 1.0;  ///< the scale the current belief's pairs were divided by
+  /// The current load's pair-term fit: whether it applies, and its sums (format 7; older
+  /// states: it does not apply).
+  bool pair_term_fit_applies = false;
+  PairTermSumsState pair_term_sums;
 };
 
 class Pipeline {
@@ -240,6 +249,14 @@ class Pipeline {
   /// The rotating masses' std in the mass, kg: the learnt belief's once it rests on a drive,
   /// else the datasheet's.
   double rotating_std_kg(double mass_kg) const;
+  /// The modelled terms' errors as the load's pairs tell them (fit_pair_terms), or nothing (no
+  /// shift) when the fit does not apply or its pairs are too few.
+  bool fits_pair_terms() const;
+  /// Whether the fit applies to the load whose belief starts now (term_fit_applies_).
+  void decide_term_fit();
+  PairTermFit pair_term_fit() const;
+  /// The regression's state with the fit's shift of the mass (and its interval).
+  RegressorState with_term_shift(RegressorState state) const;
   /// A declared known mass becomes the belief's start.
   void begin_known_mass();
   /// The known mass as the published estimate.
@@ -302,7 +319,14 @@ class Pipeline {
   /// over every load (the interval's sensitivities to them, as rotating_sensitivity_).
   GearPairSums load_sums_;
   GearPairSums interval_sums_;
-  GearPairSums sums_before_stop_;      ///< load_sums_ when the load monitor's challenger started
+  GearPairSums sums_before_stop_;  ///< load_sums_ when the load monitor's challenger started
+  /// The belief's pairs since its load began, for the errors of its modelled terms (and their
+  /// snapshot, as sums_before_stop_).
+  PairTermSums term_sums_;
+  PairTermSums term_sums_before_stop_;
+  /// Decided when the load's belief starts: the fit applies to a load whose belief began with
+  /// nothing learnt about the car (fit_pair_terms).
+  bool term_fit_applies_ = false;
   RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
   double pair_information_;            ///< RegressionPair::information of every extracted pair
   double monitor_pair_information_;    ///< the same for the load monitor's pairs
