@@ -223,6 +223,7 @@ void Pipeline::add_to_load_sums(const Extraction& extraction, const PairEvent& e
   static_anchor_.add(extraction.pair);
   load_sums_.add(extraction.pair, uncorrected_y_n(extraction.pair), gear_masses_.gears());
   term_sums_.add(extraction.pair, params_.estimator.bayes.noise_std_guess_n);
+  refit_terms();
 }
 
 void Pipeline::end_gear_evidence() {
@@ -234,6 +235,7 @@ void Pipeline::end_gear_evidence() {
   sums_before_stop_ = GearPairSums{};
   term_sums_ = PairTermSums{};
   term_sums_before_stop_ = PairTermSums{};
+  refit_terms();
 }
 
 LearntGearMasses Pipeline::gear_masses_if_ended() const {
@@ -293,6 +295,7 @@ void Pipeline::adopt_challenger() {
   sums_before_stop_ = GearPairSums{};
   term_sums_ = term_sums_.since(term_sums_before_stop_);
   term_sums_before_stop_ = PairTermSums{};
+  refit_terms();
   if (params_.estimator.type == RegressorType::kRls) {
     rls_ = load_monitor_.challenger_rls();
   } else {
@@ -367,6 +370,7 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   sums_before_stop_ = GearPairSums{};
   term_sums_ = PairTermSums{};
   term_sums_before_stop_ = PairTermSums{};
+  refit_terms();
   has_prior_ = false;
   has_plausible_ = false;
   prior_reason_ = StatusReason::kWaitingForStandstill;
@@ -547,6 +551,7 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
   term_sums_ = PairTermSums::restored(s.pair_term_sums);
   term_sums_before_stop_ = PairTermSums{};
   term_fit_applies_ = s.pair_term_fit_applies;
+  refit_terms();
   known_mass_ = s.known_mass;
   pair_scale_ = s.pair_scale;
   supervisor_.on_regressor_reset();
@@ -869,7 +874,7 @@ double Pipeline::model_std_kg(double mass_kg) const {
   // The rotating masses' and the converter map's errors move the mass by their share of it, in
   // kg (a truck's low gears, an automatic pulling away).
   if (fits_pair_terms()) {
-    return std::hypot(relative * std::abs(mass_kg), pair_term_fit().mass_std_kg);
+    return std::hypot(relative * std::abs(mass_kg), term_fit_.mass_std_kg);
   }
   const double rotating_kg = rotating_std_kg(mass_kg);
   const double converter_kg = kUniformStdPerBound * v.torque_converter_map_accuracy_fraction *
@@ -882,20 +887,24 @@ void Pipeline::decide_term_fit() {
   // holds the terms' errors, as they were on the drives it learnt from.
   term_fit_applies_ =
       params_.estimator.fit_pair_terms && !applied_gear_masses_.learnt() && !learnt_.learnt();
+  refit_terms();
 }
 
 bool Pipeline::fits_pair_terms() const { return term_fit_applies_ && term_sums_.pairs() >= 2; }
 
-PairTermFit Pipeline::pair_term_fit() const {
-  if (!fits_pair_terms()) return PairTermFit{};
+void Pipeline::refit_terms() {
+  if (!fits_pair_terms()) {
+    term_fit_ = PairTermFit{};
+    return;
+  }
   const VehicleParams& v = params_.vehicle;
-  return term_sums_.fit({kUniformStdPerBound * v.rotating_mass_accuracy_fraction,
-                         kUniformStdPerBound * v.torque_converter_map_accuracy_fraction});
+  term_fit_ = term_sums_.fit({kUniformStdPerBound * v.rotating_mass_accuracy_fraction,
+                              kUniformStdPerBound * v.torque_converter_map_accuracy_fraction});
 }
 
 RegressorState Pipeline::with_term_shift(RegressorState state) const {
   if (state.pairs_used == 0) return state;
-  const double shift_kg = pair_term_fit().mass_shift_kg;
+  const double shift_kg = term_fit_.mass_shift_kg;
   state.mass_kg += shift_kg;
   state.ci_low_kg += shift_kg;
   state.ci_high_kg += shift_kg;

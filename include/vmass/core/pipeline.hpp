@@ -249,12 +249,13 @@ class Pipeline {
   /// The rotating masses' std in the mass, kg: the learnt belief's once it rests on a drive,
   /// else the datasheet's.
   double rotating_std_kg(double mass_kg) const;
-  /// The modelled terms' errors as the load's pairs tell them (fit_pair_terms), or nothing (no
-  /// shift) when the fit does not apply or its pairs are too few.
+  /// Whether the modelled terms' errors are fitted from the load's pairs (fit_pair_terms, and
+  /// pairs enough); refit_terms() keeps term_fit_ the fit of the current sums (nothing when it
+  /// does not apply), called whenever the sums or decide_term_fit() change, not every tick.
   bool fits_pair_terms() const;
+  void refit_terms();
   /// Whether the fit applies to the load whose belief starts now (term_fit_applies_).
   void decide_term_fit();
-  PairTermFit pair_term_fit() const;
   /// The regression's state with the fit's shift of the mass (and its interval).
   RegressorState with_term_shift(RegressorState state) const;
   /// A declared known mass becomes the belief's start.
@@ -327,6 +328,7 @@ class Pipeline {
   /// Decided when the load's belief starts: the fit applies to a load whose belief began with
   /// nothing learnt about the car (fit_pair_terms).
   bool term_fit_applies_ = false;
+  PairTermFit term_fit_;
   RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
   double pair_information_;            ///< RegressionPair::information of every extracted pair
   double monitor_pair_information_;    ///< the same for the load monitor's pairs
