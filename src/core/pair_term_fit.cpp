@@ -13,6 +13,11 @@ constexpr int kMass = 0;
 constexpr int kRotating = 2;
 constexpr int kConverter = 3;
 
+/// The row-major index of (r, c) in PairTermSumsState::normal.
+std::size_t at(int r, int c) {
+  return static_cast<std::size_t>(r) * 4 + static_cast<std::size_t>(c);
+}
+
 /// The datasheet's answer: each term's error moves the mass by its sensitivity, independently.
 PairTermFit datasheet_fit(const Eigen::Matrix<double, 4, 4>& normal, const PairTermPriors& p) {
   PairTermFit out;
@@ -46,7 +51,7 @@ void PairTermSums::add(const RegressionPair& pair, double reference_noise_n) {
 PairTermSumsState PairTermSums::state() const {
   PairTermSumsState out;
   for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) out.normal[static_cast<std::size_t>(4 * r + c)] = normal_(r, c);
+    for (int c = 0; c < 4; ++c) out.normal[at(r, c)] = normal_(r, c);
     out.moment[static_cast<std::size_t>(r)] = moment_(r);
   }
   out.pairs = pairs_;
@@ -60,14 +65,14 @@ std::string PairTermSums::implausible(const PairTermSumsState& saved) {
   }
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) {
-      const double x = saved.normal[static_cast<std::size_t>(4 * r + c)];
-      const double mirror = saved.normal[static_cast<std::size_t>(4 * c + r)];
+      const double x = saved.normal[at(r, c)];
+      const double mirror = saved.normal[at(c, r)];
       if (!std::isfinite(x)) return "pair_term_normal: not finite";
       if (std::abs(x - mirror) > 1e-9 * (std::abs(x) + std::abs(mirror))) {
         return "pair_term_normal: not symmetric";
       }
     }
-    if (saved.normal[static_cast<std::size_t>(5 * r)] < 0.0) {
+    if (saved.normal[at(r, r)] < 0.0) {
       return "pair_term_normal: a negative diagonal";
     }
   }
@@ -78,8 +83,7 @@ PairTermSums PairTermSums::restored(const PairTermSumsState& saved) {
   PairTermSums out;
   if (!implausible(saved).empty()) return out;
   for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c)
-      out.normal_(r, c) = saved.normal[static_cast<std::size_t>(4 * r + c)];
+    for (int c = 0; c < 4; ++c) out.normal_(r, c) = saved.normal[at(r, c)];
     out.moment_(r) = saved.moment[static_cast<std::size_t>(r)];
   }
   out.pairs_ = saved.pairs;
