@@ -231,6 +231,10 @@ void Pipeline::end_gear_evidence() {
     const RegressorState belief = belief_state();
     if (belief.pairs_used > 0) gear_masses_.add_evidence(load_sums_, belief.mass_kg, belief.mu_n);
   }
+  clear_load_sums();
+}
+
+void Pipeline::clear_load_sums() {
   load_sums_ = GearPairSums{};
   sums_before_stop_ = GearPairSums{};
   term_sums_ = PairTermSums{};
@@ -366,11 +370,7 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   learnt_.drift();
   applied_gear_masses_ = gear_masses_;
   pair_scale_ = scale_for_pairs();
-  load_sums_ = GearPairSums{};  // the snapshot took their evidence (gear_masses_if_ended)
-  sums_before_stop_ = GearPairSums{};
-  term_sums_ = PairTermSums{};
-  term_sums_before_stop_ = PairTermSums{};
-  refit_terms();
+  clear_load_sums();  // the snapshot took their evidence (gear_masses_if_ended)
   has_prior_ = false;
   has_plausible_ = false;
   prior_reason_ = StatusReason::kWaitingForStandstill;

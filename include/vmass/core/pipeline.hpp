@@ -254,6 +254,8 @@ class Pipeline {
   /// does not apply), called whenever the sums or decide_term_fit() change, not every tick.
   bool fits_pair_terms() const;
   void refit_terms();
+  /// The sums of the load's pairs (per gear, the pair terms', their snapshots) start empty.
+  void clear_load_sums();
   /// Whether the fit applies to the load whose belief starts now (term_fit_applies_).
   void decide_term_fit();
   /// The regression's state with the fit's shift of the mass (and its interval).
