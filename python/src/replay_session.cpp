@@ -139,6 +139,7 @@ ReplayOutcome replay_log(const Config& config, const std::string& log, const Rep
   if (step.flush()) summary.finish(step.pipeline().estimate());
   scoring::record_learnt(step.pipeline(), static_cast<int>(known.size()), &summary);
   scoring::record_speed_signal(step.pipeline(), &summary);
+  scoring::record_pair_terms(step.pipeline(), &summary);
   out.summary_json =
       scoring::replay_json(summary.result(), std::string(step.pipeline().regressor().name()));
   save_state(o, step, run, &out);

@@ -19,8 +19,11 @@ std::size_t at(int r, int c) {
 }
 
 /// The datasheet's answer: each term's error moves the mass by its sensitivity, independently.
-PairTermFit datasheet_fit(const Eigen::Matrix<double, 4, 4>& normal, const PairTermPriors& p) {
+PairTermFit datasheet_fit(const Eigen::Matrix<double, 4, 4>& normal, long pairs,
+                          const PairTermPriors& p) {
   PairTermFit out;
+  out.pairs = pairs;
+  out.converter_multiplied = normal(kConverter, kConverter) > 0.0;
   out.rotating_error_std = p.rotating_std;
   out.converter_error_std = p.converter_std;
   const double da_da = normal(kMass, kMass);
@@ -99,7 +102,7 @@ PairTermSums PairTermSums::since(const PairTermSums& before) const {
 }
 
 PairTermFit PairTermSums::fit(const PairTermPriors& priors) const {
-  const PairTermFit datasheet = datasheet_fit(normal_, priors);
+  const PairTermFit datasheet = datasheet_fit(normal_, pairs_, priors);
   const Eigen::Matrix2d normal2 = normal_.topLeftCorner<2, 2>();
   // Accelerations that all equal one value cannot tell M from mu.
   const double determinant = normal2(0, 0) * normal2(1, 1) - normal2(0, 1) * normal2(0, 1);
@@ -131,6 +134,8 @@ PairTermFit PairTermSums::fit(const PairTermPriors& priors) const {
     return datasheet;
   }
   PairTermFit out;
+  out.pairs = pairs_;
+  out.converter_multiplied = normal_(kConverter, kConverter) > 0.0;
   out.mass_shift_kg = theta4(kMass) - theta2(kMass);
   out.mass_std_kg = std::sqrt(std::max(0.0, covariance4(kMass, kMass) - var2));
   out.rotating_error = theta4(kRotating);

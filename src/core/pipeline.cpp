@@ -890,6 +890,11 @@ void Pipeline::decide_term_fit() {
   refit_terms();
 }
 
+std::optional<PairTermFit> Pipeline::pair_term_fit() const {
+  if (!fits_pair_terms()) return std::nullopt;
+  return term_fit_;
+}
+
 bool Pipeline::fits_pair_terms() const { return term_fit_applies_ && term_sums_.pairs() >= 2; }
 
 void Pipeline::refit_terms() {

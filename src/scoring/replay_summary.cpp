@@ -50,6 +50,7 @@ ReplaySummary::Result ReplaySummary::result() const {
   r.verdicts = verdicts_;
   r.learnt = learnt_;
   r.coarse_speed_interval_s = coarse_speed_interval_s_;
+  r.pair_terms = pair_terms_;
   if (!has_last_) return r;
   r.duration_s = to_seconds(last_.time_us - first_us_);
   r.final_estimate = last_;
@@ -101,6 +102,11 @@ void record_speed_signal(const Pipeline& pipeline, ReplaySummary* summary) {
   if (block.speed_refresh().coarse() && !block.rotating_from_wheel_speed()) {
     summary->set_coarse_speed(block.speed_refresh().mean_interval_s());
   }
+}
+
+void record_pair_terms(const Pipeline& pipeline, ReplaySummary* summary) {
+  if (const std::optional<PairTermFit> fit = pipeline.pair_term_fit())
+    summary->set_pair_terms(*fit);
 }
 
 }  // namespace vmass::scoring

@@ -61,6 +61,21 @@ void learnt_rows(const ReplaySummary::Result::Learnt& l, std::ostringstream& out
   out << "\n";
 }
 
+// The configured rotating masses' and converter map's errors the drive's pairs tell, as
+// fractions x (the true rotating masses, and the true multiplication TR - 1, are (1 + x) times
+// the configured ones), and what they move the mass.
+void pair_term_rows(const PairTermFit& f, std::ostringstream& out) {
+  auto signed_fixed = [](double v, int digits) { return (v >= 0.0 ? "+" : "") + fixed(v, digits); };
+  out << "pair-term fit        rotating masses " << signed_fixed(f.rotating_error, 3) << " +- "
+      << fixed(f.rotating_error_std, 3);
+  if (f.converter_multiplied) {
+    out << ", converter map " << signed_fixed(-f.converter_error, 3) << " +- "
+        << fixed(f.converter_error_std, 3);
+  }
+  out << ": mass " << signed_fixed(f.mass_shift_kg, 0) << " +- " << fixed(f.mass_std_kg, 0)
+      << " kg (" << f.pairs << " pairs)\n";
+}
+
 // {"small_delta_force": 11160, "speed": 5400, ...}: why the block took no pair, by tick.
 json::Json refusals_json(const VerdictTally& tally, Block block) {
   json::Json out = json::Json::object();
@@ -168,6 +183,7 @@ std::string replay_table(const ReplaySummary::Result& r, const std::string& esti
         << " s as the speed changes: too coarse for its derivative, the rotating term read the "
            "accelerometer\n";
   }
+  if (r.pair_terms) pair_term_rows(*r.pair_terms, out);
   if (r.learnt) learnt_rows(*r.learnt, out);
   if (r.true_mass_kg) truth_rows(r, out);
   return out.str();
@@ -185,6 +201,17 @@ std::string replay_json(const ReplaySummary::Result& r, const std::string& estim
     j["speed_signal"] = {{"coarse", true},
                          {"mean_change_interval_s", json::fixed(*r.coarse_speed_interval_s, 3)},
                          {"rotating_accel", "accelerometer"}};
+  }
+  if (r.pair_terms) {
+    const PairTermFit& f = *r.pair_terms;
+    j["pair_term_fit"] = {{"rotating_error", json::fixed(f.rotating_error, 6)},
+                          {"rotating_error_std", json::fixed(f.rotating_error_std, 6)},
+                          {"converter_multiplied", f.converter_multiplied},
+                          {"converter_error", json::fixed(-f.converter_error, 6)},
+                          {"converter_error_std", json::fixed(f.converter_error_std, 6)},
+                          {"mass_shift_kg", json::fixed(f.mass_shift_kg, 3)},
+                          {"mass_std_kg", json::fixed(f.mass_std_kg, 3)},
+                          {"pairs", f.pairs}};
   }
   if (r.learnt) {
     j["learnt"] = {{"scale", json::fixed(r.learnt->scale, 6)},

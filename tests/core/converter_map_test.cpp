@@ -3,6 +3,7 @@
 #include "vmass/core/converter_map.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include <gtest/gtest.h>
 
@@ -91,7 +92,8 @@ TEST(ConverterMap, UnlockedTheEngineTorqueThroughTheMapGivesTheMass) {
 }
 
 // A pipeline on the automatic's bus whose real converter multiplies more than its map says.
-Estimate after_drive_through_converter(double map_accuracy, double true_stall, bool fit_terms) {
+Estimate after_drive_through_converter(double map_accuracy, double true_stall, bool fit_terms,
+                                       std::optional<PairTermFit>* fit = nullptr) {
   PipelineParams p;
   p.estimator.fit_pair_terms = fit_terms;
   p.vehicle = automatic_vehicle();
@@ -110,6 +112,7 @@ Estimate after_drive_through_converter(double map_accuracy, double true_stall, b
   samples.insert(samples.end(), moving.begin(), moving.end());
   for (const Sample& s : samples) pipeline.step(s);
   pipeline.flush();
+  if (fit != nullptr) *fit = pipeline.pair_term_fit();
   return pipeline.estimate();
 }
 
@@ -133,12 +136,21 @@ TEST(ConverterMap, TheDrivesPairsTellTheMapsErrorAndTakeItOffTheMass) {
   // the converter multiplying tell its map's error, and the mass no longer carries it.
   const double truth = testing::LongitudinalDrive{}.mass_kg;
   const double true_stall = 1.0 + 1.2 * (kStall - 1.0);
-  const Estimate fitted = after_drive_through_converter(0.25, true_stall, true);
-  const Estimate unfitted = after_drive_through_converter(0.25, true_stall, false);
+  std::optional<PairTermFit> fit, no_fit;
+  const Estimate fitted = after_drive_through_converter(0.25, true_stall, true, &fit);
+  const Estimate unfitted = after_drive_through_converter(0.25, true_stall, false, &no_fit);
   EXPECT_NEAR(fitted.mass_kg, truth, 0.01 * truth);
   EXPECT_LE(fitted.ci_low_kg, truth);
   EXPECT_GE(fitted.ci_high_kg, truth);
   EXPECT_LT(fitted.mass_model_std_kg, unfitted.mass_model_std_kg);
+  // What vmass-replay's summary shows: the map's TR - 1 is 20 % low (c_conv = -0.2), told
+  // within twice the fit's std.
+  ASSERT_TRUE(fit.has_value());
+  EXPECT_TRUE(fit->converter_multiplied);
+  EXPECT_NEAR(fit->converter_error, -0.2, 2.0 * fit->converter_error_std) << fit->converter_error;
+  EXPECT_LT(fit->converter_error_std, 0.25 / std::sqrt(3.0));
+  EXPECT_GT(fit->pairs, 1000);
+  EXPECT_FALSE(no_fit.has_value());  // fit_pair_terms off: nothing to show
 }
 
 }  // namespace

@@ -119,7 +119,7 @@ TEST(PairTermFit, SinceIsThePairsAfterTheSnapshotAndBadPairsAreIgnored) {
 
 TEST(PairTermFit, TheConverterMapsErrorIsToldFromThePairsItMultiplies) {
   // An automatic pulling away: its first gear's pairs carry the converter's multiplication,
-  // which its map overstates by 15 % (c_conv = -0.15); the upper gears' pairs are locked.
+  // which its map understates by 15 % (c_conv = -0.15); the upper gears' pairs are locked.
   std::mt19937 rng(21);
   std::normal_distribution<double> noise(0.0, kNoise);
   std::uniform_real_distribution<double> uniform_da(-0.6, 0.6);

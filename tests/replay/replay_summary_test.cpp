@@ -222,6 +222,40 @@ TEST(ReplaySummary, ACoarseSpeedSignalIsNamed) {
   EXPECT_EQ(j["speed_signal"]["rotating_accel"], "accelerometer") << j;
 }
 
+// The drive's own fit of the configured rotating masses' and converter map's errors: the
+// converter's row only when some pair held its multiplication.
+TEST(ReplaySummary, ThePairTermFitIsShownInTheTableAndTheJson) {
+  ReplaySummary summary(std::nullopt);
+  summary.add(refined(0, 21000.0, 100, 130));
+  EXPECT_EQ(table_of(summary, "bayes").find("pair-term fit"), std::string::npos);
+  EXPECT_FALSE(json_of(summary, "bayes").contains("pair_term_fit"));
+  PairTermFit fit;
+  fit.rotating_error = -0.1234;
+  fit.rotating_error_std = 0.0456;
+  fit.converter_error_std = 0.1443;
+  fit.mass_shift_kg = -512.4;
+  fit.mass_std_kg = 230.6;
+  fit.pairs = 4807;
+  summary.set_pair_terms(fit);
+  std::string table = table_of(summary, "bayes");
+  EXPECT_NE(table.find("pair-term fit        rotating masses -0.123 +- 0.046: mass -512 +- 231 kg "
+                       "(4807 pairs)\n"),
+            std::string::npos)
+      << table;
+  json::Json j = json_of(summary, "bayes");
+  EXPECT_DOUBLE_EQ(j["pair_term_fit"]["rotating_error"].get<double>(), -0.1234) << j;
+  EXPECT_DOUBLE_EQ(j["pair_term_fit"]["mass_shift_kg"].get<double>(), -512.4) << j;
+  EXPECT_EQ(j["pair_term_fit"]["converter_multiplied"], false) << j;
+  EXPECT_EQ(j["pair_term_fit"]["pairs"], 4807) << j;
+  fit.converter_multiplied = true;
+  fit.converter_error = -0.187;  // the map's multiplication 18.7 % low
+  summary.set_pair_terms(fit);
+  table = table_of(summary, "bayes");
+  EXPECT_NE(table.find("rotating masses -0.123 +- 0.046, converter map +0.187 +- 0.144: mass"),
+            std::string::npos)
+      << table;
+}
+
 TEST(ReplaySummary, JsonHasNoMassBeforeAnyEstimate) {
   ReplaySummary summary(std::nullopt);
   summary.add(no_prior_yet(0));

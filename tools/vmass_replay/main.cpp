@@ -289,6 +289,7 @@ int replay_one_input(const Options& o, const vmass::Config& config,
   if (step.flush()) summary.finish(step.pipeline().estimate());
   vmass::scoring::record_learnt(step.pipeline(), static_cast<int>(known.size()), &summary);
   vmass::scoring::record_speed_signal(step.pipeline(), &summary);
+  vmass::scoring::record_pair_terms(step.pipeline(), &summary);
   if (writer && !writer->close()) {
     std::cerr << "vmass-replay: " << csv_path << ": write failed\n";
     return kExitFailure;

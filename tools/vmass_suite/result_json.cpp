@@ -45,6 +45,9 @@ void add_result_fields(const EstimatorResult& r, nlohmann::json* out) {
   j["initial_mass_kg"] = number(r.initial_mass_kg);
   j["identified_lag_s"] = number(r.identified_lag_s);
   j["accel_noise_mps2"] = number(r.accel_noise_mps2);
+  j["rotating_error"] = number(r.rotating_error);
+  j["rotating_error_std"] = number(r.rotating_error_std);
+  j["pair_term_shift_kg"] = number(r.pair_term_shift_kg);
   if (!r.rotating_accel.empty()) j["rotating_accel"] = r.rotating_accel;
   j["speed_refresh_s"] = number(r.speed_refresh_s);
   // Why each block took no pair: its verdicts other than accepted, ticks (vmass only).

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -162,6 +163,11 @@ EstimatorResult run_pipeline(const std::string& name, Pipeline& pipeline,
       pipeline.longitudinal().rotating_from_wheel_speed() ? "wheel_speed" : "accelerometer";
   const double refresh_s = pipeline.longitudinal().speed_refresh().mean_interval_s();
   if (std::isfinite(refresh_s)) r.speed_refresh_s = refresh_s;
+  if (const std::optional<PairTermFit> fit = pipeline.pair_term_fit()) {
+    r.rotating_error = fit->rotating_error;
+    r.rotating_error_std = fit->rotating_error_std;
+    r.pair_term_shift_kg = fit->mass_shift_kg;
+  }
   return r;
 }
 
@@ -192,6 +198,9 @@ RunResult run_suite_case(const RunSpec& spec, const std::string& work_dir) {
   out.duration_s = run.physics.duration_s;
   out.initial_true_mass_kg = result.truth.front().mass_kg;
   out.excited_s = excited_seconds(result);
+  if (spec.realism.has(sim::Effect::kDatasheetErrors)) {
+    out.true_rotating_error = 1.0 / (1.0 + vehicle.errors.rotating_mass) - 1.0;
+  }
   const Truth truth = truth_track(result, 0);
   for (sim::Knowledge k : spec.knowledge) {
     DecodeOptions decode_options;
@@ -230,6 +239,7 @@ std::string to_json_lines(const RunResult& run) {
   base["duration_s"] = run.duration_s;
   base["initial_true_mass_kg"] = run.initial_true_mass_kg;
   base["excited_s"] = run.excited_s;
+  base["true_rotating_error"] = run.true_rotating_error;
   if (run.spec.torque_signal != sim::TorqueSignalVariant::kAsDrawn) {
     base["torque_signal"] = std::string(sim::torque_signal_variant_name(run.spec.torque_signal));
   }

@@ -63,6 +63,11 @@ struct EstimatorResult {
   /// speed signal's mean interval between changes (SpeedRefresh; NaN before a change).
   std::string rotating_accel;
   double speed_refresh_s = AccuracyResult::kNaN;
+  /// vmass: the pair-term fit's rotating-mass error c_rot and its std at the end (NaN: the fit
+  /// did not apply), and the mass shift it made, kg.
+  double rotating_error = AccuracyResult::kNaN;
+  double rotating_error_std = AccuracyResult::kNaN;
+  double pair_term_shift_kg = AccuracyResult::kNaN;
   scoring::VerdictTally verdicts;  ///< vmass: every block's verdict at every tick (why no pair)
 };
 
@@ -75,6 +80,9 @@ struct RunResult {
   /// Seconds of the drive with |dv/dt| > 0.3 m/s^2 above 2 m/s (the truth): a drive with 5 s
   /// of it must give every estimator pairs (issue 29).
   double excited_s = 0.0;
+  /// The truth of what the pair-term fit reads: the true rotating masses are (1 + this) times
+  /// the configured ones (0 without the datasheet_errors effect).
+  double true_rotating_error = 0.0;
   std::vector<EstimatorResult> results;
 };
 

@@ -42,12 +42,17 @@ struct PairTermPriors {
 };
 
 struct PairTermFit {
-  double mass_shift_kg = 0.0;   ///< add to the two-parameter regression's mass
-  double mass_std_kg = 0.0;     ///< the mass's std from the terms' remaining uncertainty
-  double rotating_error = 0.0;  ///< c_rot
+  double mass_shift_kg = 0.0;  ///< add to the two-parameter regression's mass
+  double mass_std_kg = 0.0;    ///< the mass's std from the terms' remaining uncertainty
+  /// c_rot: the true rotating masses are (1 + c_rot) times the configured ones.
+  double rotating_error = 0.0;
   double rotating_error_std = 0.0;
-  double converter_error = 0.0;  ///< c_conv
+  /// c_conv: the pairs' y misses -c_conv of the map's multiplication, so the true
+  /// multiplication (TR - 1) is (1 - c_conv) times the map's.
+  double converter_error = 0.0;
   double converter_error_std = 0.0;
+  long pairs = 0;                     ///< the pairs fitted
+  bool converter_multiplied = false;  ///< some of them held the converter's multiplication
 };
 
 /// The sums as plain values, for the state file: the normal matrix row-major, its moment.

@@ -36,6 +36,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "vmass/core/bayes_estimator.hpp"
@@ -219,6 +220,9 @@ class Pipeline {
   /// What the learnt scale would be if the drive ended now (the known mass's or the static
   /// anchor's evidence taken).
   LearntScale learnt_scale_if_ended() const;
+  /// The current load's pair-term fit (the rotating masses' and the converter map's errors, the
+  /// shift of the mass), when it applies and has pairs enough; empty otherwise.
+  std::optional<PairTermFit> pair_term_fit() const;
 
  private:
   /// The snapshot is one restore() could take: its type, finite values, counts, learnt section.

@@ -75,9 +75,13 @@ class ReplaySummary {
     /// The speed signal was found too coarse for its derivative (SpeedRefresh): its mean
     /// interval between changes, s; the rotating term read the accelerometer instead.
     std::optional<double> coarse_speed_interval_s;
+    /// The drive's fit of the configured rotating masses' and converter map's errors
+    /// (Pipeline::pair_term_fit()) at its end, when it applied.
+    std::optional<PairTermFit> pair_terms;
   };
   Result result() const;
   void set_learnt(const Result::Learnt& learnt) { learnt_ = learnt; }
+  void set_pair_terms(const PairTermFit& fit) { pair_terms_ = fit; }
   void set_coarse_speed(double interval_s) { coarse_speed_interval_s_ = interval_s; }
 
  private:
@@ -97,6 +101,7 @@ class ReplaySummary {
   VerdictTally verdicts_;
   std::optional<Result::Learnt> learnt_;
   std::optional<double> coarse_speed_interval_s_;
+  std::optional<PairTermFit> pair_terms_;
   bool any_mass_ = false;
   TimeUs first_mass_us_ = 0;
 };
@@ -108,5 +113,7 @@ void record_learnt(const Pipeline& pipeline, int known_masses, ReplaySummary* su
 /// Whether the drive found its speed signal too coarse for the rotating term (SpeedRefresh)
 /// into `summary`: vmass-replay and the Python binding report the same.
 void record_speed_signal(const Pipeline& pipeline, ReplaySummary* summary);
+/// The drive's pair-term fit (Pipeline::pair_term_fit()), when it applies, into `summary`.
+void record_pair_terms(const Pipeline& pipeline, ReplaySummary* summary);
 
 }  // namespace vmass::scoring
