@@ -133,9 +133,7 @@ PairTermFit PairTermSums::fit(const PairTermPriors& priors) const {
       !covariance4.allFinite()) {
     return datasheet;
   }
-  PairTermFit out;
-  out.pairs = pairs_;
-  out.converter_multiplied = normal_(kConverter, kConverter) > 0.0;
+  PairTermFit out = datasheet;  // its pair count and converter flag; the rest is fitted below
   out.mass_shift_kg = theta4(kMass) - theta2(kMass);
   out.mass_std_kg = std::sqrt(std::max(0.0, covariance4(kMass, kMass) - var2));
   out.rotating_error = theta4(kRotating);

@@ -14,6 +14,10 @@ std::string fixed(double v, int digits) {
   std::snprintf(buf, sizeof buf, "%.*f", digits, v);
   return buf;
 }
+// "+0.028", "-512": the sign always shown (a -0.0 shows as +0).
+std::string signed_fixed(double v, int digits) {
+  return (v >= 0.0 ? "+" : "") + fixed(v + 0.0, digits);
+}
 std::string opt_seconds(const std::optional<double>& v) {
   return v ? fixed(*v, 2) + " s" : std::string("never");
 }
@@ -65,7 +69,6 @@ void learnt_rows(const ReplaySummary::Result::Learnt& l, std::ostringstream& out
 // fractions x (the true rotating masses, and the true multiplication TR - 1, are (1 + x) times
 // the configured ones), and what they move the mass.
 void pair_term_rows(const PairTermFit& f, std::ostringstream& out) {
-  auto signed_fixed = [](double v, int digits) { return (v >= 0.0 ? "+" : "") + fixed(v, digits); };
   out << "pair-term fit        rotating masses " << signed_fixed(f.rotating_error, 3) << " +- "
       << fixed(f.rotating_error_std, 3);
   if (f.converter_multiplied) {
