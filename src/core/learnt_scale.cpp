@@ -24,6 +24,7 @@ std::string LearningParams::validate() const {
   c.in_open_range("max_abs_log_scale", max_abs_log_scale, 0.0, 1.0);
   c.at_least("min_gear_evidence_pairs", static_cast<double>(min_gear_evidence_pairs), 1.0);
   c.in_open_range("tyre_change_std_fraction", tyre_change_std_fraction, 0.0, 0.2);
+  c.nested(tyre_watch.validate());
   return c.message();
 }
 
@@ -104,6 +105,17 @@ void LearntScale::tyres_changed() {
   state_.evidence = evidence;
   state_.changes = changes;
   state_.tyre_changes = tyre_changes + 1;
+}
+
+// The anchors' mean moves with the rest; the step's variance (a few tenths of a per cent) is
+// added to the known masses' belief only, small beside the anchors' shared error.
+void LearntScale::tyres_measured(double log_step, double log_step_var) {
+  if (!std::isfinite(log_step) || !(log_step_var >= 0.0) || !std::isfinite(log_step_var)) return;
+  const double bound = params_.max_abs_log_scale;
+  state_.log_scale = std::clamp(state_.log_scale + log_step, -bound, bound);
+  state_.log_scale_var += log_step_var;
+  state_.anchor_weighted_log_scale += log_step * state_.anchor_weight;
+  if (state_.pending_outlier_sign != 0) state_.pending_log_scale += log_step;
 }
 
 void LearntScale::take(double log_scale, double variance) {

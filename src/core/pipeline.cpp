@@ -114,7 +114,8 @@ Pipeline::Pipeline(const PipelineParams& params)
       gear_masses_(learnt_gear_masses_for(params.vehicle, params.estimator.learning,
                                           params.estimator.model_error_std_fraction)),
       applied_gear_masses_(gear_masses_),
-      static_anchor_(params.estimator.bayes) {}
+      static_anchor_(params.estimator.bayes),
+      tyre_watch_(params.estimator.learning.tyre_watch) {}
 
 void Pipeline::publish_learnt_gears() {
   if (gear_masses_.revision() == published_gear_revision_) return;
@@ -224,6 +225,23 @@ void Pipeline::add_to_load_sums(const Extraction& extraction, const PairEvent& e
   load_sums_.add(extraction.pair, uncorrected_y_n(extraction.pair), gear_masses_.gears());
   term_sums_.add(extraction.pair, params_.estimator.bayes.noise_std_guess_n);
   refit_terms();
+}
+
+// Only where the speed signal is the wheels' own and fresh (not a display's coarse, late
+// speed) and the accelerometer is the one the pairs use.
+void Pipeline::watch_launches(const Sample& sample) {
+  LaunchSpan span;
+  if (!launches_.step(sample, &span)) return;
+  if (params_.estimator.longitudinal.accel_source != AccelSource::kAccelerometer ||
+      !longitudinal_.rotating_from_wheel_speed()) {
+    return;
+  }
+  tyre_watch_.add_launch(span.accel_dv, span.wheel_dv);
+}
+
+void Pipeline::end_tyre_watch() {
+  const TyreVerdict verdict = tyre_watch_.end_drive();
+  if (verdict.changed) learnt_.tyres_measured(verdict.log_step, verdict.log_step_var);
 }
 
 void Pipeline::end_gear_evidence() {
@@ -364,7 +382,9 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   // reference deflection are of the load it had then. The mass starts afresh, as on a first
   // drive: at the first standstill window (a car that reads its load) or with the drive (one
   // that does not). The counters and what was learnt about the car carry over; the drive on a
-  // known mass is evidence of the learnt scale.
+  // known mass is evidence of the learnt scale. New tyres the drive told move the learnt scale
+  // first: its known mass or standstill reading measured the scale on them.
+  end_tyre_watch();
   end_known_mass();
   end_static_anchor();
   learnt_.drift();
@@ -388,6 +408,7 @@ StepResult Pipeline::step(const Sample& sample) {
 
   if (restore_pending_) begin_after_restore(sample);
   if (declared_.active) begin_known_mass();
+  watch_launches(sample);
   if (const std::optional<StaticMass> static_mass = static_init_.step(sample)) {
     on_static_mass(*static_mass, &result);
   }
@@ -467,6 +488,7 @@ PipelineSnapshot Pipeline::snapshot() const {
   s.pair_scale = pair_scale_;
   s.pair_term_fit_applies = term_fit_applies_;
   s.pair_term_sums = term_sums_.state();
+  s.tyre_watch = tyre_watch_.state();
   return s;
 }
 
@@ -481,7 +503,8 @@ bool Pipeline::fits(const PipelineSnapshot& s) const {
       (s.has_reference &&
        (!std::isfinite(s.reference_deflection_m) || !std::isfinite(s.reference_deflection_std_m) ||
         s.reference_deflection_std_m < 0.0)) ||
-      !PairTermSums::implausible(s.pair_term_sums).empty()) {
+      !PairTermSums::implausible(s.pair_term_sums).empty() ||
+      !TyreWatch::implausible(s.tyre_watch).empty()) {
     return false;
   }
   for (const BlockCounters& b : s.blocks) {
@@ -544,6 +567,7 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
     static_anchor_.end();
   }
   if (s.gear_masses_saved) gear_masses_.restore(s.gear_masses);
+  tyre_watch_.restore(s.tyre_watch);
   applied_gear_masses_ = gear_masses_;
   load_sums_ = GearPairSums{};  // the snapshot's gear masses hold their evidence
   sums_before_stop_ = GearPairSums{};
@@ -663,6 +687,7 @@ LearntScale Pipeline::learnt_scale_if_ended() const {
 void Pipeline::reset_learnt() {
   learnt_.reset();
   gear_masses_.reset();
+  tyre_watch_.reset();
   applied_gear_masses_ = gear_masses_;
 }
 
@@ -674,6 +699,7 @@ void Pipeline::tyres_changed() {
   end_known_mass();
   end_static_anchor();
   learnt_.tyres_changed();
+  tyre_watch_.tyres_declared();
   // The scale's mean is kept, so the pairs' scale stands; the interval widens from the next tick.
 }
 
@@ -682,7 +708,9 @@ bool Pipeline::restore_learnt(const PipelineSnapshot& s) {
   if (!learnt_.restore(s.learnt)) return false;
   if (s.gear_masses_saved) gear_masses_.restore(s.gear_masses);
   applied_gear_masses_ = gear_masses_;
-  learnt_.drift();  // a restart with its load unknown is a power cycle
+  // A restart with its load unknown is a power cycle: the saved drive ends.
+  if (tyre_watch_.restore(s.tyre_watch)) end_tyre_watch();
+  learnt_.drift();
   if (!has_prior_) pair_scale_ = scale_for_pairs();
   return true;
 }
@@ -867,8 +895,10 @@ double Pipeline::model_std_kg(double mass_kg) const {
   // The lumped scale's std: learnt from the car's known masses, or the datasheet's (widened by
   // new tyres once declared).
   const VehicleParams& v = params_.vehicle;
+  // A step of the launches suspected but not yet a change: the scale may have moved by it.
   const double scale_variance =
-      learnt_.replaces_datasheet() ? learnt_.log_scale_var() : declared_scale_variance(v);
+      (learnt_.replaces_datasheet() ? learnt_.log_scale_var() : declared_scale_variance(v)) +
+      tyre_watch_.suspected_variance();
   const double relative =
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' and the converter map's errors move the mass by their share of it, in

@@ -138,6 +138,7 @@ void check_learnt(const PipelineSnapshot& s, const PipelineParams& params, Check
     if (std::string why = gears.implausible(s.gear_masses); !why.empty()) c.fail(why);
   }
   if (std::string why = PairTermSums::implausible(s.pair_term_sums); !why.empty()) c.fail(why);
+  if (std::string why = TyreWatch::implausible(s.tyre_watch); !why.empty()) c.fail(why);
   c.within("pair scale", s.pair_scale, std::exp(-learning.max_abs_log_scale),
            std::exp(learning.max_abs_log_scale), "");
   if (!s.known_mass.active) return;

@@ -18,7 +18,9 @@ namespace vmass::service {
 namespace {
 
 constexpr const char* kMagic = "vmass-state";
-constexpr int kVersion = 7;
+constexpr int kVersion = 8;
+/// Still read: all but the tyre watch (nothing watched yet).
+constexpr int kVersionWithoutTyreWatch = 7;
 /// Still read: all but the current load's pair-term fit (it does not apply).
 constexpr int kVersionWithoutPairTerms = 6;
 /// Still read: all but the tyre changes (none; every known mass counts as since the tyres).
@@ -209,6 +211,25 @@ void write_gear_masses(std::string* out, const GearMassesState& g) {
   }
 }
 
+/// Format version 8: the launches' log s (TyreWatchState): each LaunchSums as "count sum sum_sq".
+void put_launches(std::string* out, const char* key, const LaunchSums& l) {
+  const double v[3] = {l.count, l.sum, l.sum_sq};
+  put_list(out, key, v, 3);
+}
+
+void write_tyre_watch(std::string* out, const TyreWatchState& t) {
+  put_launches(out, "tyre_watch_settled", t.settled);
+  put_int(out, "tyre_watch_window_drives", t.window_drives);
+  for (long i = 0; i < t.window_drives; ++i) {
+    const std::string key = "tyre_watch_window_" + std::to_string(i + 1);
+    put_launches(out, key.c_str(), t.window[static_cast<std::size_t>(i)]);
+  }
+  put_launches(out, "tyre_watch_drive", t.drive);
+  put(out, "tyre_watch_spread_sum_sq", t.spread_sum_sq);
+  put(out, "tyre_watch_spread_dof", t.spread_dof);
+  put_int(out, "tyre_watch_changes", t.changes);
+}
+
 /// Format version 7: the current load's pair-term fit (PairTermSums), the normal matrix row-major.
 void write_pair_terms(std::string* out, const PipelineSnapshot& s) {
   put_int(out, "pair_term_fit_applies", s.pair_term_fit_applies ? 1 : 0);
@@ -260,6 +281,7 @@ std::string format_state(const SavedState& state) {
   for (const StateField& field : kTyreFields) write_field(&out, field, s);
   write_gear_masses(&out, s.gear_masses);
   write_pair_terms(&out, s);
+  write_tyre_watch(&out, s.tyre_watch);
   std::snprintf(hex, sizeof hex, "%016" PRIx64, fnv1a(out.data(), out.size()));
   out += std::string("checksum ") + hex + "\n";
   return out;
@@ -400,6 +422,34 @@ std::string read_pair_terms(const ValueReader& in, PipelineSnapshot* s) {
   return in.reals("pair_term_moment", 4, s->pair_term_sums.moment.data());
 }
 
+std::string read_launches(const ValueReader& in, const std::string& key, LaunchSums* l) {
+  double v[3] = {0.0, 0.0, 0.0};
+  if (std::string e = in.reals(key, 3, v); !e.empty()) return e;
+  *l = LaunchSums{v[0], v[1], v[2]};
+  return "";
+}
+
+std::string read_tyre_watch(const ValueReader& in, TyreWatchState* t) {
+  if (std::string e = read_launches(in, "tyre_watch_settled", &t->settled); !e.empty()) return e;
+  long long n = 0;
+  if (std::string e = in.integer("tyre_watch_window_drives", &n); !e.empty()) return e;
+  if (n < 0 || n > kTyreWatchWindowDrives) return "tyre_watch_window_drives: out of range";
+  t->window_drives = static_cast<long>(n);
+  for (long i = 0; i < t->window_drives; ++i) {
+    const std::string key = "tyre_watch_window_" + std::to_string(i + 1);
+    if (std::string e = read_launches(in, key, &t->window[static_cast<std::size_t>(i)]);
+        !e.empty()) {
+      return e;
+    }
+  }
+  if (std::string e = read_launches(in, "tyre_watch_drive", &t->drive); !e.empty()) return e;
+  if (std::string e = in.real("tyre_watch_spread_sum_sq", &t->spread_sum_sq); !e.empty()) return e;
+  if (std::string e = in.real("tyre_watch_spread_dof", &t->spread_dof); !e.empty()) return e;
+  if (std::string e = in.integer("tyre_watch_changes", &n); !e.empty()) return e;
+  t->changes = static_cast<long>(n);
+  return "";
+}
+
 std::string read_gear_masses(const ValueReader& in, GearMassesState* g) {
   long long n = 0;
   if (std::string e = in.integer("learnt_gears", &n); !e.empty()) return e;
@@ -465,8 +515,8 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   const std::string& version_text = values[kMagic];
   int version = 0;
   for (int known :
-       {kVersion, kVersionWithoutPairTerms, kVersionWithoutTyres, kVersionWithoutAnchors,
-        kVersionKgReference, kVersionWithoutGears, kVersionWithoutLearnt}) {
+       {kVersion, kVersionWithoutTyreWatch, kVersionWithoutPairTerms, kVersionWithoutTyres,
+        kVersionWithoutAnchors, kVersionKgReference, kVersionWithoutGears, kVersionWithoutLearnt}) {
     if (version_text == std::to_string(known)) version = known;
   }
   if (version == 0) {
@@ -513,8 +563,11 @@ bool parse_state(const std::string& text, SavedState* state, std::string* error)
   if (out.snapshot.gear_masses_saved) {
     if (std::string e = read_gear_masses(in, &out.snapshot.gear_masses); !e.empty()) return fail(e);
   }
-  if (version >= kVersion) {
+  if (version >= kVersionWithoutTyreWatch) {
     if (std::string e = read_pair_terms(in, &out.snapshot); !e.empty()) return fail(e);
+  }
+  if (version >= kVersion) {
+    if (std::string e = read_tyre_watch(in, &out.snapshot.tyre_watch); !e.empty()) return fail(e);
   }
   *state = out;
   return true;
@@ -595,6 +648,7 @@ StateLoad load_state_file(const std::string& path, std::uint64_t expected_finger
       saved.learnt_fingerprint != *expected_learnt_fingerprint) {
     saved.snapshot.learnt_saved = false;
     saved.snapshot.gear_masses_saved = false;
+    saved.snapshot.tyre_watch = TyreWatchState{};
     out.learnt_dropped = path +
                          ": what was learnt about the car was learnt with another rolling "
                          "radius, driveline or resistances; it is forgotten";

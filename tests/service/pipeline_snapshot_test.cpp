@@ -98,6 +98,20 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
   EXPECT_EQ(a.learnt.anchor_weighted_common_std, b.learnt.anchor_weighted_common_std);
   EXPECT_EQ(a.learnt.anchors, b.learnt.anchors);
   EXPECT_EQ(a.learnt.tyre_changes, b.learnt.tyre_changes);
+  const auto same_launches = [](const LaunchSums& x, const LaunchSums& y) {
+    EXPECT_EQ(x.count, y.count);
+    EXPECT_EQ(x.sum, y.sum);
+    EXPECT_EQ(x.sum_sq, y.sum_sq);
+  };
+  same_launches(a.tyre_watch.settled, b.tyre_watch.settled);
+  same_launches(a.tyre_watch.drive, b.tyre_watch.drive);
+  EXPECT_EQ(a.tyre_watch.window_drives, b.tyre_watch.window_drives);
+  for (long i = 0; i < a.tyre_watch.window_drives; ++i) {
+    same_launches(a.tyre_watch.window[std::size_t(i)], b.tyre_watch.window[std::size_t(i)]);
+  }
+  EXPECT_EQ(a.tyre_watch.spread_sum_sq, b.tyre_watch.spread_sum_sq);
+  EXPECT_EQ(a.tyre_watch.spread_dof, b.tyre_watch.spread_dof);
+  EXPECT_EQ(a.tyre_watch.changes, b.tyre_watch.changes);
   EXPECT_EQ(a.learnt.evidence_since_tyres, b.learnt.evidence_since_tyres);
   EXPECT_EQ(a.static_anchor_pending, b.static_anchor_pending);
   EXPECT_EQ(a.static_anchor.log_scale, b.static_anchor.log_scale);
@@ -546,6 +560,43 @@ TEST_F(StateFileTest, ThePairTermFitRoundTripsAndAVersionSixFileStillLoads) {
   EXPECT_NE(service::implausible_state(skewed, params).find("pair_term_normal"), std::string::npos);
   Pipeline pipeline(params);
   EXPECT_FALSE(pipeline.restore(skewed));
+}
+
+// Format version 8 added the launches' log s (TyreWatchState): it round-trips; a version-7 file
+// loads with nothing watched; sums no launches could have summed to are named.
+TEST_F(StateFileTest, TheTyreWatchRoundTripsAndAVersionSevenFileStillLoads) {
+  SavedState watched = state_;
+  TyreWatchState& t = watched.snapshot.tyre_watch;
+  t.settled = LaunchSums{12.0, 0.096, 0.0009};
+  t.window_drives = 2;
+  t.window[0] = LaunchSums{2.0, 0.02, 0.00021};
+  t.window[1] = LaunchSums{1.0, 0.031, 0.000961};
+  t.drive = LaunchSums{1.0, 0.012, 0.000144};
+  t.spread_sum_sq = 0.0007;
+  t.spread_dof = 9.0;
+  t.changes = 1;
+  const std::string text = service::format_state(watched);
+  SavedState back;
+  std::string error;
+  ASSERT_TRUE(service::parse_state(text, &back, &error)) << error;
+  expect_same(back.snapshot, watched.snapshot);
+
+  const std::string v7 =
+      as_older_format(text, 7,
+                      {"tyre_watch_settled", "tyre_watch_window_drives", "tyre_watch_window_1",
+                       "tyre_watch_window_2", "tyre_watch_drive", "tyre_watch_spread_sum_sq",
+                       "tyre_watch_spread_dof", "tyre_watch_changes"});
+  ASSERT_FALSE(v7.empty());
+  ASSERT_TRUE(service::parse_state(v7, &back, &error)) << error;
+  EXPECT_EQ(back.snapshot.tyre_watch.settled.count, 0.0);
+  EXPECT_EQ(back.snapshot.tyre_watch.window_drives, 0);
+
+  const PipelineParams params = test_params("bayes");
+  PipelineSnapshot wild = watched.snapshot;
+  wild.tyre_watch.window[1].sum = 0.9;  // a mean log s of 0.9: no tyres do that
+  EXPECT_NE(service::implausible_state(wild, params).find("tyre_watch_window"), std::string::npos);
+  Pipeline pipeline(params);
+  EXPECT_FALSE(pipeline.restore(wild));
 }
 
 // Another rolling radius makes what was learnt wrong: it is dropped and the mass kept. Another

@@ -75,6 +75,12 @@ struct Learnt {
   long changes = 0;
   double mass_std = 0.0;   ///< the published std (regression and model)
   double model_std = 0.0;  ///< its model part: the scale, the floor, the rotating masses
+  /// The launches (TyreWatch): this drive's count and their mean log s (NaN: none), the largest
+  /// step found at the drive's start (in its std), the tyre changes told so far.
+  double tyre_drive_launches = 0.0;
+  double tyre_drive_log_ratio = std::numeric_limits<double>::quiet_NaN();
+  double tyre_best_sigma = 0.0;
+  long tyre_changes_detected = 0;
 };
 
 /// What the user tells vmass before a drive's first tick.
@@ -105,6 +111,12 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   const double mass = last.mass_kg > 0.0 ? last.mass_kg : 1.0;
   *learnt = Learnt{scale.scale(),         scale.relative_std(),    scale.state().evidence,
                    scale.state().changes, last.mass_std_kg / mass, last.mass_model_std_kg / mass};
+  const TyreWatch& tyres = pipeline->tyre_watch();
+  const LaunchSums& launches = tyres.state().drive;
+  learnt->tyre_drive_launches = launches.count;
+  if (launches.count > 0.0) learnt->tyre_drive_log_ratio = launches.mean();
+  learnt->tyre_best_sigma = tyres.last_verdict().best_sigma;
+  learnt->tyre_changes_detected = tyres.state().changes;
   pipeline->flush();
   const TimeUs saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
   std::string save_error;
@@ -266,6 +278,12 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       j["learnt_changes"] = learnt.changes;
       j["mass_std_end_pct"] = 100.0 * learnt.mass_std;
       j["model_std_end_pct"] = 100.0 * learnt.model_std;
+      j["tyre_drive_launches"] = learnt.tyre_drive_launches;
+      if (std::isfinite(learnt.tyre_drive_log_ratio)) {
+        j["tyre_drive_log_ratio"] = learnt.tyre_drive_log_ratio;
+      }
+      j["tyre_best_sigma"] = learnt.tyre_best_sigma;
+      j["tyre_changes_detected"] = learnt.tyre_changes_detected;
       out.json_lines += j.dump() + "\n";
       if (v.known_mass) continue;  // its fresh drives are the variant's without
       EstimatorResult fresh = fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"));

@@ -162,6 +162,16 @@ inline constexpr std::array<Field<LearningParams>, 9> kLearningFields{{
     {"tyre_change_std_fraction", &LearningParams::tyre_change_std_fraction},
 }};
 
+inline constexpr std::array<Field<TyreWatchParams>, 7> kTyreWatchFields{{
+    {"enabled", &TyreWatchParams::enabled},
+    {"launch_std", &TyreWatchParams::launch_std},
+    {"min_launches_for_spread", &TyreWatchParams::min_launches_for_spread},
+    {"min_launches_each_side", &TyreWatchParams::min_launches_each_side},
+    {"change_sigma", &TyreWatchParams::change_sigma},
+    {"min_change_fraction", &TyreWatchParams::min_change_fraction},
+    {"suspect_sigma", &TyreWatchParams::suspect_sigma},
+}};
+
 /// The section's layout: `v.fields(table, params)` for the keys of one level, `v.begin(key)` and
 /// `v.end()` around a nested section. `E` is EstimatorParams or const EstimatorParams.
 template <class Visitor, class E>
@@ -200,6 +210,9 @@ void walk_estimator_section(Visitor& v, E& e) {
   v.end();
   v.begin("learning");
   v.fields(kLearningFields, e.learning);
+  v.begin("tyre_watch");
+  v.fields(kTyreWatchFields, e.learning.tyre_watch);
+  v.end();
   v.end();
 }
 

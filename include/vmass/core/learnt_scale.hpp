@@ -31,6 +31,7 @@
 #include <cstdint>
 #include <string>
 
+#include "vmass/core/tyre_watch.hpp"
 #include "vmass/core/vehicle_params.hpp"
 
 namespace vmass {
@@ -62,6 +63,8 @@ struct LearningParams {
   /// replaced by new is +1 to +3 % of the radius; a seasonal set or another size moves it either
   /// way. The mean is kept: the change's size depends on how worn the old set was.
   double tyre_change_std_fraction = 0.02;
+  /// New tyres told by the launches and stops (TyreWatch).
+  TyreWatchParams tyre_watch;
 
   std::string validate() const;
 };
@@ -133,6 +136,10 @@ class LearntScale {
   /// pending outlier and the static anchors (read on the old tyres) are dropped, and the anchors
   /// read from now on join the belief until the next known mass.
   void tyres_changed();
+  /// New tyres measured (TyreWatch): log kappa moved by log_step, with that step's variance.
+  /// Everything the belief holds moves with it (the known masses' evidence, the static anchors,
+  /// a pending outlier): each measured kappa on the old tyres, which the step carries to the new.
+  void tyres_measured(double log_step, double log_step_var);
   /// Back to the datasheet (a user's reset).
   void reset();
   /// false (and nothing changed) when the state is not a belief this class could hold.

@@ -44,6 +44,7 @@
 #include "vmass/core/extraction.hpp"
 #include "vmass/core/known_mass.hpp"
 #include "vmass/core/lateral_extractor.hpp"
+#include "vmass/core/launch_integrator.hpp"
 #include "vmass/core/learnt_gear_masses.hpp"
 #include "vmass/core/learnt_scale.hpp"
 #include "vmass/core/load_change_monitor.hpp"
@@ -158,6 +159,9 @@ struct PipelineSnapshot {
   bool static_anchor_pending = false;
   AnchorObservation static_anchor;
   double pair_scale = 1.0;  ///< the scale the current belief's pairs were divided by
+  /// The launches' and stops' log s, across drives and this drive's (TyreWatch; format 8, older
+  /// states: nothing watched yet).
+  TyreWatchState tyre_watch;
   /// The current load's pair-term fit: whether it applies, and its sums (format 7; older
   /// states: it does not apply).
   bool pair_term_fit_applies = false;
@@ -215,6 +219,7 @@ class Pipeline {
   bool restore_learnt(const PipelineSnapshot& snapshot);
   const LearntScale& learnt_scale() const { return learnt_; }
   const LearntGearMasses& gear_masses() const { return gear_masses_; }
+  const TyreWatch& tyre_watch() const { return tyre_watch_; }
   /// What the learnt gear masses would be if the drive ended now (its gears' evidence taken).
   LearntGearMasses gear_masses_if_ended() const;
   /// What the learnt scale would be if the drive ended now (the known mass's or the static
@@ -238,6 +243,11 @@ class Pipeline {
   LearntScale learnt_with_anchor() const;
   /// The static anchor's evidence so far; false when it has none.
   bool anchor_observation(AnchorObservation* out) const;
+  /// A launch from a standstill or a stop to one that ends on this tick tells the tyres
+  /// (TyreWatch).
+  void watch_launches(const Sample& sample);
+  /// The drive ended: new tyres it told move the learnt scale (LearntScale::tyres_measured).
+  void end_tyre_watch();
   /// The current load's gears' evidence into the learnt gear masses; the load's sums restart.
   void end_gear_evidence();
   /// What is learnt about each gear's rotating mass, into the estimate.
@@ -359,6 +369,8 @@ class Pipeline {
   /// The current load's standstill reading, while it holds; a snapshot saves its evidence so
   /// far, which a restored pipeline holds until the load ends.
   StaticAnchor static_anchor_;
+  TyreWatch tyre_watch_;
+  LaunchIntegrator launches_;
   KnownMass known_mass_;
   KnownMass declared_;       ///< active: declared, taken at the next step
   double pair_scale_ = 1.0;  ///< kappa the belief's longitudinal pairs are divided by

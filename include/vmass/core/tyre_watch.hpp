@@ -1,0 +1,135 @@
+// TyreWatch: new tyres told by the car itself, from its launches and stops.
+//
+// The ESC's speed signal is the wheels' rotation times the radius it assumes, so new tyres (worn
+// tread replaced by new: the radius 1-3 % larger) make it read every speed low by their factor
+// f. The accelerometer does not see the tyres. Each launch from a standstill, and each stop to
+// one (LaunchIntegrator), measures
+//   s = (integral of a_x - its standstill reading) / (the speed signal's change)
+// The standstill reading holds the grade and the accelerometer's bias, so s is a constant of the
+// car (its body pitch, the accelerometer's scale, the speed signal's radius error) until the
+// tyres change, and then it steps by exactly f. So does the lumped scale kappa (LearntScale):
+// the wheel torque is read as a force through the config's radius, T / r_config = f T / r_new.
+// A step of log s therefore both tells that the tyres changed and measures how far the learnt
+// scale moved with them.
+//
+// (A drive's pairs give s too, as da_x against dv', but the driven wheels' slip under a changing
+// torque scatters it by 3 % from drive to drive: docs/estimator.md.)
+//
+// One launch's log s scatters by about 1 % (the grade changes under it, the slip at its end),
+// and most drives have one or two. So the change is found across drives: tyres change while the car
+// is parked, and at each drive's end every boundary between the last window_drives drives is
+// tried (the launches since it against those before, since the last change); the largest step,
+// if beyond change_sigma of its std and min_change_fraction, is a change, and the launches after
+// it start the belief again. A step beyond suspect_sigma that is not yet a change is suspected:
+// the interval holds it until the launches confirm or clear it.
+//
+// Pure; allocates nothing; not thread-safe (one owner).
+#pragma once
+
+#include <array>
+#include <string>
+
+namespace vmass {
+
+struct TyreWatchParams {
+  bool enabled = true;
+  /// One launch's std of log s, and its floor once launches enough (min_launches_for_spread)
+  /// measure it: what varies from drive to drive (the load's pitch and slip, the roads) is not in
+  /// a drive's own scatter. The lifetime instrument reads 0.6-0.8 % between drives' means.
+  double launch_std = 0.01;
+  long min_launches_for_spread = 10;
+  /// A step is tried with at least this many launches on each side ...
+  long min_launches_each_side = 3;
+  /// ... and is a change beyond this many of its std ...
+  double change_sigma = 4.0;
+  /// ... and beyond this fraction (smaller steps move the mass less than its interval).
+  double min_change_fraction = 0.006;
+  /// A step beyond this many std (and min_change_fraction) but not yet a change is suspected:
+  /// until the next drive's end the interval holds it (suspected_variance()).
+  double suspect_sigma = 2.0;
+
+  std::string validate() const;
+};
+
+/// Launches' sums of x = log s.
+struct LaunchSums {
+  double count = 0.0;
+  double sum = 0.0;
+  double sum_sq = 0.0;
+  void add(double x) {
+    count += 1.0;
+    sum += x;
+    sum_sq += x * x;
+  }
+  void add(const LaunchSums& o) {
+    count += o.count;
+    sum += o.sum;
+    sum_sq += o.sum_sq;
+  }
+  double mean() const { return sum / count; }
+};
+
+/// The drives the change can be found in.
+constexpr int kTyreWatchWindowDrives = 16;
+
+/// The persisted part (plain values).
+struct TyreWatchState {
+  LaunchSums settled;  ///< launches since the last change, before the window
+  std::array<LaunchSums, kTyreWatchWindowDrives> window{};  ///< the last drives', oldest first
+  long window_drives = 0;
+  LaunchSums drive;  ///< this drive's launches so far
+  /// Within-drive scatter: the sum of squares about each drive's mean, and its degrees of freedom.
+  double spread_sum_sq = 0.0;
+  double spread_dof = 0.0;
+  long changes = 0;  ///< tyre changes detected
+};
+
+/// What end_drive() found.
+struct TyreVerdict {
+  bool changed = false;
+  /// The largest step tried, of log s (and of log kappa): new - old; a change when `changed`.
+  double log_step = 0.0;
+  double log_step_var = 0.0;  ///< its variance
+  /// The largest step tried (a change or not), in its std: how close the drive came to one.
+  double best_sigma = 0.0;
+};
+
+class TyreWatch {
+ public:
+  explicit TyreWatch(const TyreWatchParams& params) : params_(params) {}
+
+  /// One launch: the accelerometer's integrated change of speed and the speed signal's, m/s.
+  void add_launch(double accel_dv_mps, double speed_dv_mps);
+  /// The drive ends (a power cycle): its launches join the window, and a step is looked for.
+  TyreVerdict end_drive();
+  /// New tyres declared: the change is known, so the launches start again from it.
+  void tyres_declared();
+  /// Forget everything (a user's reset of what was learnt).
+  void reset();
+
+  /// The launches' log s since the last change (NaN without any), and one launch's std.
+  double log_ratio() const;
+  double launch_std() const;
+  const TyreWatchState& state() const { return state_; }
+  /// What the last end_drive() found.
+  const TyreVerdict& last_verdict() const { return last_; }
+  /// The square of a suspected step (0 when none): what the learnt scale may have moved by.
+  double suspected_variance() const { return suspected_variance_; }
+  bool restore(const TyreWatchState& state);
+  /// "" when the state is one restore() takes, else why not.
+  static std::string implausible(const TyreWatchState& state);
+
+ private:
+  /// The best boundary in the window: its index (1..window_drives-1 or window_drives for "this
+  /// drive alone"), its step and variance; false when no side has launches enough.
+  bool best_step(int* boundary, double* step, double* variance) const;
+  void restart_after(int boundary);
+  void update_suspicion();
+
+  TyreWatchParams params_;
+  TyreWatchState state_;
+  TyreVerdict last_;
+  double suspected_variance_ = 0.0;
+};
+
+}  // namespace vmass

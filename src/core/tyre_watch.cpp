@@ -1,0 +1,182 @@
+#include "vmass/core/tyre_watch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "vmass/core/param_check.hpp"
+
+namespace vmass {
+namespace {
+
+/// |log s| beyond this is no speed signal of this car's wheels (a wrong config, a launch that
+/// was no launch): such a launch is not taken, nor a saved state restored.
+constexpr double kMaxAbsLogRatio = 0.3;
+
+bool finite(double x) { return std::isfinite(x); }
+
+bool plausible(const LaunchSums& s) {
+  return finite(s.count) && finite(s.sum) && finite(s.sum_sq) && s.count >= 0.0 &&
+         s.sum_sq >= 0.0 && std::abs(s.sum) <= kMaxAbsLogRatio * s.count;
+}
+
+}  // namespace
+
+std::string TyreWatchParams::validate() const {
+  ParamCheck c("estimator.learning.tyre_watch");
+  c.in_open_range("launch_std", launch_std, 0.0, 0.2);
+  c.at_least("min_launches_for_spread", static_cast<double>(min_launches_for_spread), 2.0);
+  c.at_least("min_launches_each_side", static_cast<double>(min_launches_each_side), 1.0);
+  c.positive("change_sigma", change_sigma);
+  c.in_open_range("min_change_fraction", min_change_fraction, 0.0, 0.2);
+  c.positive("suspect_sigma", suspect_sigma);
+  return c.message();
+}
+
+void TyreWatch::add_launch(double accel_dv_mps, double speed_dv_mps) {
+  if (!params_.enabled || !(accel_dv_mps > 0.0) || !(speed_dv_mps > 0.0) || !finite(accel_dv_mps) ||
+      !finite(speed_dv_mps)) {
+    return;
+  }
+  const double x = std::log(accel_dv_mps / speed_dv_mps);
+  if (std::abs(x) > kMaxAbsLogRatio) return;
+  state_.drive.add(x);
+}
+
+double TyreWatch::log_ratio() const {
+  LaunchSums all = state_.settled;
+  for (long i = 0; i < state_.window_drives; ++i) all.add(state_.window[i]);
+  all.add(state_.drive);
+  return all.count > 0.0 ? all.mean() : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Pooled over the drives: the scatter of launches about their own drive's mean (a step between
+// drives does not widen it). Never below launch_std, which holds what varies from drive to drive
+// (the load's pitch and slip, the roads).
+double TyreWatch::launch_std() const {
+  if (state_.spread_dof + 1.0 < static_cast<double>(params_.min_launches_for_spread)) {
+    return params_.launch_std;
+  }
+  return std::max(params_.launch_std, std::sqrt(state_.spread_sum_sq / state_.spread_dof));
+}
+
+bool TyreWatch::best_step(int* boundary, double* step, double* variance) const {
+  const double min_each = static_cast<double>(params_.min_launches_each_side);
+  const double var1 = launch_std() * launch_std();
+  double best = -1.0;
+  LaunchSums before = state_.settled;
+  for (int b = 0; b < state_.window_drives; ++b) {
+    if (b > 0) before.add(state_.window[b - 1]);
+    LaunchSums after;
+    for (long i = b; i < state_.window_drives; ++i) after.add(state_.window[i]);
+    if (before.count < min_each || after.count < min_each) continue;
+    const double d = after.mean() - before.mean();
+    const double v = var1 * (1.0 / after.count + 1.0 / before.count);
+    const double z = std::abs(d) / std::sqrt(v);
+    if (z > best) {
+      best = z;
+      *boundary = b;
+      *step = d;
+      *variance = v;
+    }
+  }
+  return best >= 0.0;
+}
+
+void TyreWatch::restart_after(int boundary) {
+  LaunchSums after;
+  for (long i = boundary; i < state_.window_drives; ++i) after.add(state_.window[i]);
+  state_.settled = after;
+  state_.window = {};
+  state_.window_drives = 0;
+  ++state_.changes;
+}
+
+// From the state alone, so that a restored watch suspects what the saved one did.
+void TyreWatch::update_suspicion() {
+  suspected_variance_ = 0.0;
+  int boundary = 0;
+  double step = 0.0;
+  double variance = 0.0;
+  if (!best_step(&boundary, &step, &variance)) return;
+  if (std::abs(step) >= params_.suspect_sigma * std::sqrt(variance) &&
+      std::abs(step) > params_.min_change_fraction) {
+    suspected_variance_ = step * step;
+  }
+}
+
+TyreVerdict TyreWatch::end_drive() {
+  last_ = TyreVerdict{};
+  const LaunchSums drive = state_.drive;
+  state_.drive = LaunchSums{};
+  if (drive.count >= 2.0) {
+    state_.spread_sum_sq += std::max(drive.sum_sq - drive.sum * drive.sum / drive.count, 0.0);
+    state_.spread_dof += drive.count - 1.0;
+  }
+  if (drive.count == 0.0) return last_;  // nothing new to tell a step by
+  if (state_.window_drives == kTyreWatchWindowDrives) {
+    state_.settled.add(state_.window[0]);
+    for (int i = 1; i < kTyreWatchWindowDrives; ++i) state_.window[i - 1] = state_.window[i];
+    --state_.window_drives;
+  }
+  state_.window[state_.window_drives++] = drive;
+  int boundary = 0;
+  double step = 0.0;
+  double variance = 0.0;
+  if (!best_step(&boundary, &step, &variance)) return last_;
+  last_.best_sigma = std::abs(step) / std::sqrt(variance);
+  last_.log_step = step;
+  last_.log_step_var = variance;
+  if (last_.best_sigma > params_.change_sigma && std::abs(step) > params_.min_change_fraction) {
+    last_.changed = true;
+    restart_after(boundary);
+  }
+  update_suspicion();
+  return last_;
+}
+
+void TyreWatch::tyres_declared() {
+  const long changes = state_.changes;
+  const double spread_sum_sq = state_.spread_sum_sq;
+  const double spread_dof = state_.spread_dof;
+  state_ = TyreWatchState{};
+  state_.changes = changes;
+  state_.spread_sum_sq = spread_sum_sq;
+  state_.spread_dof = spread_dof;
+  suspected_variance_ = 0.0;
+}
+
+void TyreWatch::reset() {
+  state_ = TyreWatchState{};
+  last_ = TyreVerdict{};
+  suspected_variance_ = 0.0;
+}
+
+// The messages name the state file's keys.
+std::string TyreWatch::implausible(const TyreWatchState& s) {
+  if (!plausible(s.settled)) return "tyre_watch_settled: launch sums out of range";
+  if (!plausible(s.drive)) return "tyre_watch_drive: launch sums out of range";
+  if (s.window_drives < 0 || s.window_drives > kTyreWatchWindowDrives) {
+    return "tyre_watch_window_drives: out of range";
+  }
+  for (long i = 0; i < kTyreWatchWindowDrives; ++i) {
+    if (!plausible(s.window[static_cast<std::size_t>(i)])) {
+      return "tyre_watch_window_" + std::to_string(i + 1) + ": launch sums out of range";
+    }
+  }
+  if (!finite(s.spread_sum_sq) || !finite(s.spread_dof) || s.spread_sum_sq < 0.0 ||
+      s.spread_dof < 0.0) {
+    return "tyre_watch_spread: out of range";
+  }
+  if (s.changes < 0) return "tyre_watch_changes: out of range";
+  return "";
+}
+
+bool TyreWatch::restore(const TyreWatchState& state) {
+  if (!implausible(state).empty()) return false;
+  state_ = state;
+  update_suspicion();
+  return true;
+}
+
+}  // namespace vmass
