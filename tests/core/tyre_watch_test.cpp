@@ -94,7 +94,9 @@ TEST(TyreWatchTest, AStepSmallerThanTheMinimumIsNoChange) {
     for (int i = 0; i < 5; ++i) watch.add_launch(10.0 * std::exp(log_ratio + tiny(rng)), 10.0);
     const TyreVerdict v = watch.end_drive();
     EXPECT_FALSE(v.changed);
-    if (d == 9) EXPECT_GT(v.best_sigma, params.change_sigma);
+    if (d == 9) {
+      EXPECT_GT(v.best_sigma, params.change_sigma);
+    }
   }
 }
 

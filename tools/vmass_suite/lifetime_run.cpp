@@ -80,6 +80,7 @@ struct Learnt {
   double tyre_drive_launches = 0.0;
   double tyre_drive_log_ratio = std::numeric_limits<double>::quiet_NaN();
   double tyre_best_sigma = 0.0;
+  double tyre_launch_std = 0.0;  ///< one launch's std of log s, as the watch takes it
   long tyre_changes_detected = 0;
 };
 
@@ -116,6 +117,7 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   learnt->tyre_drive_launches = launches.count;
   if (launches.count > 0.0) learnt->tyre_drive_log_ratio = launches.mean();
   learnt->tyre_best_sigma = tyres.last_verdict().best_sigma;
+  learnt->tyre_launch_std = tyres.launch_std();
   learnt->tyre_changes_detected = tyres.state().changes;
   pipeline->flush();
   const TimeUs saved_time_us = d.samples.empty() ? 0 : d.samples.back().time_us;
@@ -130,6 +132,23 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
     *error = v.state_path + ": " + save_error;  // reported like a refused restore
   }
   return r;
+}
+
+/// What the lifetime drive learnt, into its JSON line.
+void add_learnt_fields(const Learnt& learnt, nlohmann::json* j) {
+  (*j)["learnt_scale"] = learnt.scale;
+  (*j)["learnt_scale_std"] = learnt.scale_std;
+  (*j)["learnt_evidence"] = learnt.evidence;
+  (*j)["learnt_changes"] = learnt.changes;
+  (*j)["mass_std_end_pct"] = 100.0 * learnt.mass_std;
+  (*j)["model_std_end_pct"] = 100.0 * learnt.model_std;
+  (*j)["tyre_drive_launches"] = learnt.tyre_drive_launches;
+  if (std::isfinite(learnt.tyre_drive_log_ratio)) {
+    (*j)["tyre_drive_log_ratio"] = learnt.tyre_drive_log_ratio;
+  }
+  (*j)["tyre_best_sigma"] = learnt.tyre_best_sigma;
+  (*j)["tyre_launch_std"] = learnt.tyre_launch_std;
+  (*j)["tyre_changes_detected"] = learnt.tyre_changes_detected;
 }
 
 EstimatorResult fresh_drive(const Variant& v, const DecodedDrive& d, const Truth& truth,
@@ -272,18 +291,7 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       add_result_fields(life, &j);
       j["known_mass_declared"] = declares;
       j["tyres_declared"] = told.tyres_changed;
-      j["learnt_scale"] = learnt.scale;
-      j["learnt_scale_std"] = learnt.scale_std;
-      j["learnt_evidence"] = learnt.evidence;
-      j["learnt_changes"] = learnt.changes;
-      j["mass_std_end_pct"] = 100.0 * learnt.mass_std;
-      j["model_std_end_pct"] = 100.0 * learnt.model_std;
-      j["tyre_drive_launches"] = learnt.tyre_drive_launches;
-      if (std::isfinite(learnt.tyre_drive_log_ratio)) {
-        j["tyre_drive_log_ratio"] = learnt.tyre_drive_log_ratio;
-      }
-      j["tyre_best_sigma"] = learnt.tyre_best_sigma;
-      j["tyre_changes_detected"] = learnt.tyre_changes_detected;
+      add_learnt_fields(learnt, &j);
       out.json_lines += j.dump() + "\n";
       if (v.known_mass) continue;  // its fresh drives are the variant's without
       EstimatorResult fresh = fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"));
