@@ -42,7 +42,7 @@ bool LaunchIntegrator::finish(double speed_mps, LaunchSpan* out) const {
       std::abs(std::log(end_ratio / mid_ratio_)) > kMaxRatioChange) {
     return false;
   }
-  *out = LaunchSpan{speed_mps, integral_};
+  *out = LaunchSpan{false, speed_mps, integral_};
   return true;
 }
 
@@ -96,7 +96,7 @@ bool LaunchIntegrator::stop_at_rest(double accel_mps2, double dt, LaunchSpan* ou
   const double whole_ratio = whole / stop_start_mps_;
   const double mid_ratio = to_mid / (stop_start_mps_ - stop_mid_mps_);
   if (std::abs(std::log(whole_ratio / mid_ratio)) > kMaxRatioChange) return false;
-  *out = LaunchSpan{stop_start_mps_, whole};
+  *out = LaunchSpan{true, stop_start_mps_, whole};
   return true;
 }
 

@@ -236,7 +236,8 @@ void Pipeline::watch_launches(const Sample& sample) {
       !longitudinal_.rotating_from_wheel_speed()) {
     return;
   }
-  tyre_watch_.add_launch(span.accel_dv, span.wheel_dv);
+  tyre_watch_.add_span(span.stop ? SpanKind::kStop : SpanKind::kLaunch, span.accel_dv,
+                       span.wheel_dv);
 }
 
 void Pipeline::end_tyre_watch() {

@@ -20,6 +20,10 @@ bool plausible(const LaunchSums& s) {
          s.sum_sq >= 0.0 && std::abs(s.sum) <= kMaxAbsLogRatio * s.count;
 }
 
+bool plausible(const SpanSums& s) { return plausible(s.kind[0]) && plausible(s.kind[1]); }
+
+std::size_t index(SpanKind kind) { return static_cast<std::size_t>(kind); }
+
 }  // namespace
 
 std::string TyreWatchParams::validate() const {
@@ -33,21 +37,22 @@ std::string TyreWatchParams::validate() const {
   return c.message();
 }
 
-void TyreWatch::add_launch(double accel_dv_mps, double speed_dv_mps) {
+void TyreWatch::add_span(SpanKind kind, double accel_dv_mps, double speed_dv_mps) {
   if (!params_.enabled || !(accel_dv_mps > 0.0) || !(speed_dv_mps > 0.0) || !finite(accel_dv_mps) ||
       !finite(speed_dv_mps)) {
     return;
   }
   const double x = std::log(accel_dv_mps / speed_dv_mps);
   if (std::abs(x) > kMaxAbsLogRatio) return;
-  state_.drive.add(x);
+  state_.drive.kind[index(kind)].add(x);
 }
 
-double TyreWatch::log_ratio() const {
-  LaunchSums all = state_.settled;
-  for (long i = 0; i < state_.window_drives; ++i) all.add(state_.window[i]);
+double TyreWatch::log_ratio(SpanKind kind) const {
+  SpanSums all = state_.settled;
+  for (long i = 0; i < state_.window_drives; ++i) all.add(state_.window[std::size_t(i)]);
   all.add(state_.drive);
-  return all.count > 0.0 ? all.mean() : std::numeric_limits<double>::quiet_NaN();
+  const LaunchSums& one = all.kind[index(kind)];
+  return one.count > 0.0 ? one.mean() : std::numeric_limits<double>::quiet_NaN();
 }
 
 // Pooled over the drives: the scatter of launches about their own drive's mean (a step between
@@ -60,18 +65,41 @@ double TyreWatch::launch_std() const {
   return std::max(params_.launch_std, std::sqrt(state_.spread_sum_sq / state_.spread_dof));
 }
 
+// Each series' step across the boundary, weighed by its precision; false when neither series
+// has spans on both sides.
+bool TyreWatch::series_step(const SpanSums& before, const SpanSums& after, double* step,
+                            double* variance) const {
+  const double var1 = launch_std() * launch_std();
+  double precision = 0.0;
+  double weighted = 0.0;
+  for (int k = 0; k < kSpanKinds; ++k) {
+    const LaunchSums& b = before.kind[std::size_t(k)];
+    const LaunchSums& a = after.kind[std::size_t(k)];
+    if (b.count < 1.0 || a.count < 1.0) continue;
+    const double w = 1.0 / (var1 * (1.0 / a.count + 1.0 / b.count));
+    precision += w;
+    weighted += w * (a.mean() - b.mean());
+  }
+  if (!(precision > 0.0)) return false;
+  *step = weighted / precision;
+  *variance = 1.0 / precision;
+  return true;
+}
+
 bool TyreWatch::best_step(int* boundary, double* step, double* variance) const {
   const double min_each = static_cast<double>(params_.min_launches_each_side);
-  const double var1 = launch_std() * launch_std();
   double best = -1.0;
-  LaunchSums before = state_.settled;
+  SpanSums before = state_.settled;
   for (int b = 0; b < state_.window_drives; ++b) {
-    if (b > 0) before.add(state_.window[b - 1]);
-    LaunchSums after;
-    for (long i = b; i < state_.window_drives; ++i) after.add(state_.window[i]);
-    if (before.count < min_each || after.count < min_each) continue;
-    const double d = after.mean() - before.mean();
-    const double v = var1 * (1.0 / after.count + 1.0 / before.count);
+    if (b > 0) before.add(state_.window[std::size_t(b - 1)]);
+    SpanSums after;
+    for (long i = b; i < state_.window_drives; ++i) after.add(state_.window[std::size_t(i)]);
+    double d = 0.0;
+    double v = 0.0;
+    if (before.count() < min_each || after.count() < min_each ||
+        !series_step(before, after, &d, &v)) {
+      continue;
+    }
     const double z = std::abs(d) / std::sqrt(v);
     if (z > best) {
       best = z;
@@ -84,8 +112,8 @@ bool TyreWatch::best_step(int* boundary, double* step, double* variance) const {
 }
 
 void TyreWatch::restart_after(int boundary) {
-  LaunchSums after;
-  for (long i = boundary; i < state_.window_drives; ++i) after.add(state_.window[i]);
+  SpanSums after;
+  for (long i = boundary; i < state_.window_drives; ++i) after.add(state_.window[std::size_t(i)]);
   state_.settled = after;
   state_.window = {};
   state_.window_drives = 0;
@@ -107,13 +135,14 @@ void TyreWatch::update_suspicion() {
 
 TyreVerdict TyreWatch::end_drive() {
   last_ = TyreVerdict{};
-  const LaunchSums drive = state_.drive;
-  state_.drive = LaunchSums{};
-  if (drive.count >= 2.0) {
-    state_.spread_sum_sq += std::max(drive.sum_sq - drive.sum * drive.sum / drive.count, 0.0);
-    state_.spread_dof += drive.count - 1.0;
+  const SpanSums drive = state_.drive;
+  state_.drive = SpanSums{};
+  for (const LaunchSums& one : drive.kind) {
+    if (one.count < 2.0) continue;
+    state_.spread_sum_sq += std::max(one.sum_sq - one.sum * one.sum / one.count, 0.0);
+    state_.spread_dof += one.count - 1.0;
   }
-  if (drive.count == 0.0) return last_;  // nothing new to tell a step by
+  if (drive.count() == 0.0) return last_;  // nothing new to tell a step by
   if (state_.window_drives == kTyreWatchWindowDrives) {
     state_.settled.add(state_.window[0]);
     for (int i = 1; i < kTyreWatchWindowDrives; ++i) state_.window[i - 1] = state_.window[i];
@@ -160,7 +189,7 @@ std::string TyreWatch::implausible(const TyreWatchState& s) {
     return "tyre_watch_window_drives: out of range";
   }
   for (long i = 0; i < kTyreWatchWindowDrives; ++i) {
-    if (!plausible(s.window[static_cast<std::size_t>(i)])) {
+    if (!plausible(s.window[std::size_t(i)])) {
       return "tyre_watch_window_" + std::to_string(i + 1) + ": launch sums out of range";
     }
   }

@@ -211,10 +211,13 @@ void write_gear_masses(std::string* out, const GearMassesState& g) {
   }
 }
 
-/// Format version 8: the launches' log s (TyreWatchState): each LaunchSums as "count sum sum_sq".
-void put_launches(std::string* out, const char* key, const LaunchSums& l) {
-  const double v[3] = {l.count, l.sum, l.sum_sq};
-  put_list(out, key, v, 3);
+/// Format version 8: the launches' and stops' log s (TyreWatchState): each SpanSums as
+/// "count sum sum_sq" of the launches, then of the stops.
+void put_launches(std::string* out, const char* key, const SpanSums& l) {
+  const LaunchSums& a = l.kind[0];
+  const LaunchSums& b = l.kind[1];
+  const double v[6] = {a.count, a.sum, a.sum_sq, b.count, b.sum, b.sum_sq};
+  put_list(out, key, v, 6);
 }
 
 void write_tyre_watch(std::string* out, const TyreWatchState& t) {
@@ -422,10 +425,11 @@ std::string read_pair_terms(const ValueReader& in, PipelineSnapshot* s) {
   return in.reals("pair_term_moment", 4, s->pair_term_sums.moment.data());
 }
 
-std::string read_launches(const ValueReader& in, const std::string& key, LaunchSums* l) {
-  double v[3] = {0.0, 0.0, 0.0};
-  if (std::string e = in.reals(key, 3, v); !e.empty()) return e;
-  *l = LaunchSums{v[0], v[1], v[2]};
+std::string read_launches(const ValueReader& in, const std::string& key, SpanSums* l) {
+  double v[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  if (std::string e = in.reals(key, 6, v); !e.empty()) return e;
+  l->kind[0] = LaunchSums{v[0], v[1], v[2]};
+  l->kind[1] = LaunchSums{v[3], v[4], v[5]};
   return "";
 }
 

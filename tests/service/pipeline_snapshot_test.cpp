@@ -103,11 +103,14 @@ void expect_same(const PipelineSnapshot& a, const PipelineSnapshot& b) {
     EXPECT_EQ(x.sum, y.sum);
     EXPECT_EQ(x.sum_sq, y.sum_sq);
   };
-  same_launches(a.tyre_watch.settled, b.tyre_watch.settled);
-  same_launches(a.tyre_watch.drive, b.tyre_watch.drive);
-  EXPECT_EQ(a.tyre_watch.window_drives, b.tyre_watch.window_drives);
-  for (long i = 0; i < a.tyre_watch.window_drives; ++i) {
-    same_launches(a.tyre_watch.window[std::size_t(i)], b.tyre_watch.window[std::size_t(i)]);
+  for (std::size_t k = 0; k < kSpanKinds; ++k) {
+    same_launches(a.tyre_watch.settled.kind[k], b.tyre_watch.settled.kind[k]);
+    same_launches(a.tyre_watch.drive.kind[k], b.tyre_watch.drive.kind[k]);
+    EXPECT_EQ(a.tyre_watch.window_drives, b.tyre_watch.window_drives);
+    for (long i = 0; i < a.tyre_watch.window_drives; ++i) {
+      same_launches(a.tyre_watch.window[std::size_t(i)].kind[k],
+                    b.tyre_watch.window[std::size_t(i)].kind[k]);
+    }
   }
   EXPECT_EQ(a.tyre_watch.spread_sum_sq, b.tyre_watch.spread_sum_sq);
   EXPECT_EQ(a.tyre_watch.spread_dof, b.tyre_watch.spread_dof);
@@ -567,11 +570,12 @@ TEST_F(StateFileTest, ThePairTermFitRoundTripsAndAVersionSixFileStillLoads) {
 TEST_F(StateFileTest, TheTyreWatchRoundTripsAndAVersionSevenFileStillLoads) {
   SavedState watched = state_;
   TyreWatchState& t = watched.snapshot.tyre_watch;
-  t.settled = LaunchSums{12.0, 0.096, 0.0009};
+  t.settled.kind[0] = LaunchSums{12.0, 0.096, 0.0009};
+  t.settled.kind[1] = LaunchSums{7.0, 0.28, 0.0113};
   t.window_drives = 2;
-  t.window[0] = LaunchSums{2.0, 0.02, 0.00021};
-  t.window[1] = LaunchSums{1.0, 0.031, 0.000961};
-  t.drive = LaunchSums{1.0, 0.012, 0.000144};
+  t.window[0].kind[0] = LaunchSums{2.0, 0.02, 0.00021};
+  t.window[1].kind[1] = LaunchSums{1.0, 0.031, 0.000961};
+  t.drive.kind[0] = LaunchSums{1.0, 0.012, 0.000144};
   t.spread_sum_sq = 0.0007;
   t.spread_dof = 9.0;
   t.changes = 1;
@@ -588,12 +592,12 @@ TEST_F(StateFileTest, TheTyreWatchRoundTripsAndAVersionSevenFileStillLoads) {
                        "tyre_watch_spread_dof", "tyre_watch_changes"});
   ASSERT_FALSE(v7.empty());
   ASSERT_TRUE(service::parse_state(v7, &back, &error)) << error;
-  EXPECT_EQ(back.snapshot.tyre_watch.settled.count, 0.0);
+  EXPECT_EQ(back.snapshot.tyre_watch.settled.count(), 0.0);
   EXPECT_EQ(back.snapshot.tyre_watch.window_drives, 0);
 
   const PipelineParams params = test_params("bayes");
   PipelineSnapshot wild = watched.snapshot;
-  wild.tyre_watch.window[1].sum = 0.9;  // a mean log s of 0.9: no tyres do that
+  wild.tyre_watch.window[1].kind[1].sum = 0.9;  // a mean log s of 0.9: no tyres do that
   EXPECT_NE(service::implausible_state(wild, params).find("tyre_watch_window"), std::string::npos);
   Pipeline pipeline(params);
   EXPECT_FALSE(pipeline.restore(wild));

@@ -75,9 +75,10 @@ struct Learnt {
   long changes = 0;
   double mass_std = 0.0;   ///< the published std (regression and model)
   double model_std = 0.0;  ///< its model part: the scale, the floor, the rotating masses
-  /// The launches (TyreWatch): this drive's count and their mean log s (NaN: none), the largest
-  /// step found at the drive's start (in its std), the tyre changes told so far.
+  /// The launches and stops (TyreWatch): this drive's counts and the launches' mean log s (NaN:
+  /// none), the largest step found at the drive's start (in its std), the tyre changes told.
   double tyre_drive_launches = 0.0;
+  double tyre_drive_stops = 0.0;
   double tyre_drive_log_ratio = std::numeric_limits<double>::quiet_NaN();
   double tyre_best_sigma = 0.0;
   double tyre_launch_std = 0.0;  ///< one launch's std of log s, as the watch takes it
@@ -113,8 +114,9 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   *learnt = Learnt{scale.scale(),         scale.relative_std(),    scale.state().evidence,
                    scale.state().changes, last.mass_std_kg / mass, last.mass_model_std_kg / mass};
   const TyreWatch& tyres = pipeline->tyre_watch();
-  const LaunchSums& launches = tyres.state().drive;
+  const LaunchSums& launches = tyres.state().drive.kind[0];
   learnt->tyre_drive_launches = launches.count;
+  learnt->tyre_drive_stops = tyres.state().drive.kind[1].count;
   if (launches.count > 0.0) learnt->tyre_drive_log_ratio = launches.mean();
   learnt->tyre_best_sigma = tyres.last_verdict().best_sigma;
   learnt->tyre_launch_std = tyres.launch_std();
@@ -143,6 +145,7 @@ void add_learnt_fields(const Learnt& learnt, nlohmann::json* j) {
   (*j)["mass_std_end_pct"] = 100.0 * learnt.mass_std;
   (*j)["model_std_end_pct"] = 100.0 * learnt.model_std;
   (*j)["tyre_drive_launches"] = learnt.tyre_drive_launches;
+  (*j)["tyre_drive_stops"] = learnt.tyre_drive_stops;
   if (std::isfinite(learnt.tyre_drive_log_ratio)) {
     (*j)["tyre_drive_log_ratio"] = learnt.tyre_drive_log_ratio;
   }

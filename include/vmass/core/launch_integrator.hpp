@@ -21,6 +21,7 @@
 namespace vmass {
 
 struct LaunchSpan {
+  bool stop = false;      ///< a stop to rest (else a launch from it)
   double wheel_dv = 0.0;  ///< the speed signal's change, m/s
   double accel_dv = 0.0;  ///< the accelerometer's, less its standstill reading, integrated, m/s
 };

@@ -15,8 +15,12 @@
 // (A drive's pairs give s too, as da_x against dv', but the driven wheels' slip under a changing
 // torque scatters it by 3 % from drive to drive: docs/estimator.md.)
 //
-// One launch's log s scatters by about 1 % (the grade changes under it, the slip at its end),
-// and most drives have one or two. So the change is found across drives: tyres change while the car
+// Launches and stops are two series: the driven wheels slip forward under traction and back
+// under the brakes, so a stop reads s about 3 % above a launch of the same car (the held-out
+// cars). Each series' step is the tyres', so each boundary's step is the two series' steps,
+// weighed by their precision. One launch's log s scatters by a few tenths of a per cent about
+// its series (the grade changing under it, the slip at its end), and most drives have one or
+// two. So the change is found across drives: tyres change while the car
 // is parked, and at each drive's end every boundary between the last window_drives drives is
 // tried (the launches since it against those before, since the last change); the largest step,
 // if beyond change_sigma of its std and min_change_fraction, is a change, and the launches after
@@ -27,16 +31,17 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 
 namespace vmass {
 
 struct TyreWatchParams {
   bool enabled = true;
-  /// One launch's std of log s, and its floor once launches enough (min_launches_for_spread)
+  /// One span's std of log s, and its floor once spans enough (min_launches_for_spread)
   /// measure it: what varies from drive to drive (the load's pitch and slip, the roads) is not in
-  /// a drive's own scatter. The lifetime instrument reads 0.6-0.8 % between drives' means.
-  double launch_std = 0.01;
+  /// a drive's own scatter. 1 % read no step beyond 2.0 std in 400 drives on the same tyres.
+  double launch_std = 0.007;
   long min_launches_for_spread = 10;
   /// A step is tried with at least this many launches on each side ...
   long min_launches_each_side = 3;
@@ -46,12 +51,16 @@ struct TyreWatchParams {
   double min_change_fraction = 0.006;
   /// A step beyond this many std (and min_change_fraction) but not yet a change is suspected:
   /// until the next drive's end the interval holds it (suspected_variance()).
-  double suspect_sigma = 2.0;
+  double suspect_sigma = 2.5;
 
   std::string validate() const;
 };
 
-/// Launches' sums of x = log s.
+/// A launch from a standstill, or a stop to one (each a series of its own).
+enum class SpanKind : std::uint8_t { kLaunch = 0, kStop = 1 };
+constexpr int kSpanKinds = 2;
+
+/// One series' sums of x = log s.
 struct LaunchSums {
   double count = 0.0;
   double sum = 0.0;
@@ -69,15 +78,24 @@ struct LaunchSums {
   double mean() const { return sum / count; }
 };
 
+/// Both series' sums.
+struct SpanSums {
+  std::array<LaunchSums, kSpanKinds> kind{};
+  void add(const SpanSums& o) {
+    for (int k = 0; k < kSpanKinds; ++k) kind[std::size_t(k)].add(o.kind[std::size_t(k)]);
+  }
+  double count() const { return kind[0].count + kind[1].count; }
+};
+
 /// The drives the change can be found in.
 constexpr int kTyreWatchWindowDrives = 16;
 
 /// The persisted part (plain values).
 struct TyreWatchState {
-  LaunchSums settled;  ///< launches since the last change, before the window
-  std::array<LaunchSums, kTyreWatchWindowDrives> window{};  ///< the last drives', oldest first
+  SpanSums settled;  ///< launches and stops since the last change, before the window
+  std::array<SpanSums, kTyreWatchWindowDrives> window{};  ///< the last drives', oldest first
   long window_drives = 0;
-  LaunchSums drive;  ///< this drive's launches so far
+  SpanSums drive;  ///< this drive's so far
   /// Within-drive scatter: the sum of squares about each drive's mean, and its degrees of freedom.
   double spread_sum_sq = 0.0;
   double spread_dof = 0.0;
@@ -98,8 +116,9 @@ class TyreWatch {
  public:
   explicit TyreWatch(const TyreWatchParams& params) : params_(params) {}
 
-  /// One launch: the accelerometer's integrated change of speed and the speed signal's, m/s.
-  void add_launch(double accel_dv_mps, double speed_dv_mps);
+  /// One launch or stop: the accelerometer's integrated change of speed and the speed
+  /// signal's, m/s (both positive).
+  void add_span(SpanKind kind, double accel_dv_mps, double speed_dv_mps);
   /// The drive ends (a power cycle): its launches join the window, and a step is looked for.
   TyreVerdict end_drive();
   /// New tyres declared: the change is known, so the launches start again from it.
@@ -107,8 +126,8 @@ class TyreWatch {
   /// Forget everything (a user's reset of what was learnt).
   void reset();
 
-  /// The launches' log s since the last change (NaN without any), and one launch's std.
-  double log_ratio() const;
+  /// One series' log s since the last change (NaN without any), and one span's std.
+  double log_ratio(SpanKind kind) const;
   double launch_std() const;
   const TyreWatchState& state() const { return state_; }
   /// What the last end_drive() found.
@@ -123,6 +142,8 @@ class TyreWatch {
   /// The best boundary in the window: its index (1..window_drives-1 or window_drives for "this
   /// drive alone"), its step and variance; false when no side has launches enough.
   bool best_step(int* boundary, double* step, double* variance) const;
+  bool series_step(const SpanSums& before, const SpanSums& after, double* step,
+                   double* variance) const;
   void restart_after(int boundary);
   void update_suspicion();
 
