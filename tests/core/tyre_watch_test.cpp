@@ -141,27 +141,39 @@ TEST(TyreWatchTest, ASavedStateIsRestoredOnlyWhenPlausible) {
   EXPECT_FALSE(TyreWatch::implausible(bad).empty());
 }
 
+/// A 100 Hz drive whose speed signal reads v / tyre_factor and accelerometer a_x.
+class Ticks {
+ public:
+  explicit Ticks(double tyre_factor) : tyre_factor_(tyre_factor) {}
+  void add(double v, double a_x) {
+    Sample s;
+    s.time_us = t_;
+    s.set(Input::kSpeed, v / tyre_factor_);
+    s.set(Input::kAccelX, a_x);
+    samples_.push_back(s);
+    t_ += 10'000;
+  }
+  const std::vector<Sample>& samples() const { return samples_; }
+
+ private:
+  double tyre_factor_;
+  std::vector<Sample> samples_;
+  TimeUs t_ = 1'000'000;
+};
+
 /// 100 Hz ticks: `still_s` at rest on `grade_accel` (what the accelerometer reads at rest), then a
 /// launch at `accel` until `end_mps`; the speed signal reads v / tyre_factor, the accelerometer
 /// the true acceleration plus the grade (which may change by `grade_change` over the launch).
 std::vector<Sample> launch(double still_s, double grade_accel, double accel, double end_mps,
                            double tyre_factor, double grade_change = 0.0) {
-  std::vector<Sample> out;
-  TimeUs t = 1'000'000;
-  auto tick = [&](double v, double a_x) {
-    Sample s;
-    s.time_us = t;
-    s.set(Input::kSpeed, v / tyre_factor);
-    s.set(Input::kAccelX, a_x);
-    out.push_back(s);
-    t += 10'000;
-  };
+  Ticks ticks(tyre_factor);
+  auto tick = [&](double v, double a_x) { ticks.add(v, a_x); };
   for (double s = 0.0; s < still_s; s += 0.01) tick(0.0, grade_accel);
   const double duration = end_mps / accel;
   for (double s = 0.01; s <= duration + 0.02; s += 0.01) {
     tick(accel * s, accel + grade_accel + grade_change * s / duration);
   }
-  return out;
+  return ticks.samples();
 }
 
 LaunchSpan integrate(const std::vector<Sample>& samples, int* launches) {
@@ -209,20 +221,12 @@ TEST(LaunchIntegratorTest, AHoleInTheDataEndsTheLaunch) {
 /// rest; the speed signal reads v / tyre_factor.
 std::vector<Sample> stop(double from_mps, double decel, double grade_accel, double rest_s,
                          double tyre_factor) {
-  std::vector<Sample> out;
-  TimeUs t = 1'000'000;
-  auto tick = [&](double v, double a_x) {
-    Sample s;
-    s.time_us = t;
-    s.set(Input::kSpeed, v / tyre_factor);
-    s.set(Input::kAccelX, a_x);
-    out.push_back(s);
-    t += 10'000;
-  };
+  Ticks ticks(tyre_factor);
+  auto tick = [&](double v, double a_x) { ticks.add(v, a_x); };
   for (int i = 0; i < 200; ++i) tick(from_mps, grade_accel);
   for (double v = from_mps - decel * 0.01; v > 0.0; v -= decel * 0.01) tick(v, grade_accel - decel);
   for (double s = 0.0; s < rest_s; s += 0.01) tick(0.0, grade_accel);
-  return out;
+  return ticks.samples();
 }
 
 TEST(LaunchIntegratorTest, AStopToRestMeasuresTheScaleOnceTheRestReadsTheGrade) {
