@@ -164,14 +164,12 @@ TyreVerdict TyreWatch::end_drive() {
   return last_;
 }
 
+// The spans read so far are the old tyres'; their scatter and the changes told stay.
 void TyreWatch::tyres_declared() {
-  const long changes = state_.changes;
-  const double spread_sum_sq = state_.spread_sum_sq;
-  const double spread_dof = state_.spread_dof;
-  state_ = TyreWatchState{};
-  state_.changes = changes;
-  state_.spread_sum_sq = spread_sum_sq;
-  state_.spread_dof = spread_dof;
+  state_.settled = SpanSums{};
+  state_.window = {};
+  state_.window_drives = 0;
+  state_.drive = SpanSums{};
   suspected_variance_ = 0.0;
 }
 
