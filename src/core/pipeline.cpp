@@ -129,6 +129,31 @@ void Pipeline::publish_learnt_gears() {
   }
 }
 
+void Pipeline::publish_tyre_watch() {
+  const SpanSums held = tyre_watch_.held();
+  estimate_.tyre_watch_launches = std::lround(held.kind[std::size_t(SpanKind::kLaunch)].count);
+  estimate_.tyre_watch_stops = std::lround(held.kind[std::size_t(SpanKind::kStop)].count);
+  estimate_.tyre_watch_changes = tyre_watch_.state().changes;
+  const TyreVerdict& standing = tyre_watch_.standing();
+  estimate_.tyre_watch_step = std::expm1(standing.log_step);
+  estimate_.tyre_watch_step_sigma = standing.best_sigma;
+  estimate_.tyre_watch_suspected = tyre_watch_.suspected_variance() > 0.0;
+}
+
+void Pipeline::publish_pair_term_fit() {
+  const std::optional<PairTermFit> fit = pair_term_fit();
+  estimate_.pair_fit_applies = fit.has_value();
+  const PairTermFit shown = fit.value_or(PairTermFit{});
+  estimate_.pair_fit_converter_multiplied = shown.converter_multiplied;
+  estimate_.pair_fit_pairs = shown.pairs;
+  estimate_.pair_fit_rotating_error = shown.rotating_error;
+  estimate_.pair_fit_rotating_error_std = shown.rotating_error_std;
+  estimate_.pair_fit_converter_error = shown.converter_error;
+  estimate_.pair_fit_converter_error_std = shown.converter_error_std;
+  estimate_.pair_fit_shift_kg = shown.mass_shift_kg;
+  estimate_.pair_fit_shift_std_kg = shown.mass_std_kg;
+}
+
 double Pipeline::scale_for_pairs() const {
   return learnt_.scale() * applied_gear_masses_.scale_factor();
 }
@@ -759,6 +784,8 @@ void Pipeline::refresh_estimate(const Sample& sample) {
   estimate_.learnt_evidence_since_tyres = learnt_.state().evidence_since_tyres;
   estimate_.known_mass = known_mass_.active;
   publish_learnt_gears();
+  publish_tyre_watch();
+  publish_pair_term_fit();
   refresh_belief();
 }
 

@@ -47,11 +47,15 @@ void TyreWatch::add_span(SpanKind kind, double accel_dv_mps, double speed_dv_mps
   state_.drive.kind[index(kind)].add(x);
 }
 
-double TyreWatch::log_ratio(SpanKind kind) const {
+SpanSums TyreWatch::held() const {
   SpanSums all = state_.settled;
   for (long i = 0; i < state_.window_drives; ++i) all.add(state_.window[std::size_t(i)]);
   all.add(state_.drive);
-  const LaunchSums& one = all.kind[index(kind)];
+  return all;
+}
+
+double TyreWatch::log_ratio(SpanKind kind) const {
+  const LaunchSums one = held().kind[index(kind)];
   return one.count > 0.0 ? one.mean() : std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -123,10 +127,14 @@ void TyreWatch::restart_after(int boundary) {
 // From the state alone, so that a restored watch suspects what the saved one did.
 void TyreWatch::update_suspicion() {
   suspected_variance_ = 0.0;
+  standing_ = TyreVerdict{};
   int boundary = 0;
   double step = 0.0;
   double variance = 0.0;
   if (!best_step(&boundary, &step, &variance)) return;
+  standing_.log_step = step;
+  standing_.log_step_var = variance;
+  standing_.best_sigma = std::abs(step) / std::sqrt(variance);
   if (std::abs(step) >= params_.suspect_sigma * std::sqrt(variance) &&
       std::abs(step) > params_.min_change_fraction) {
     suspected_variance_ = step * step;
@@ -170,12 +178,14 @@ void TyreWatch::tyres_declared() {
   state_.window = {};
   state_.window_drives = 0;
   state_.drive = SpanSums{};
+  standing_ = TyreVerdict{};
   suspected_variance_ = 0.0;
 }
 
 void TyreWatch::reset() {
   state_ = TyreWatchState{};
   last_ = TyreVerdict{};
+  standing_ = TyreVerdict{};
   suspected_variance_ = 0.0;
 }
 

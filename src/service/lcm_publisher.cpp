@@ -173,6 +173,31 @@ void learnt_gears_to_lcm(const Estimate& e, vmass::status_t* out) {
   out->learnt_gear_drives = e.learnt_gear_drives;
 }
 
+/// What the tyre watch holds (schema 8).
+void tyre_watch_to_lcm(const Estimate& e, vmass::status_t* out) {
+  out->tyre_watch_launches = e.tyre_watch_launches;
+  out->tyre_watch_stops = e.tyre_watch_stops;
+  out->tyre_watch_changes = e.tyre_watch_changes;
+  out->tyre_watch_step = finite_or_zero(e.tyre_watch_step);
+  out->tyre_watch_step_sigma = finite_or_zero(e.tyre_watch_step_sigma);
+  out->tyre_watch_suspected = e.tyre_watch_suspected;
+}
+
+/// The drive's pair-term fit (schema 8); zeros when it does not apply.
+void pair_fit_to_lcm(const Estimate& e, vmass::status_t* out) {
+  const bool applies = e.pair_fit_applies;
+  out->pair_fit_applies = applies;
+  out->pair_fit_pairs = applies ? e.pair_fit_pairs : 0;
+  out->pair_fit_rotating_error = applies ? finite_or_zero(e.pair_fit_rotating_error) : 0.0;
+  out->pair_fit_rotating_error_std = applies ? finite_or_zero(e.pair_fit_rotating_error_std) : 0.0;
+  out->pair_fit_converter_multiplied = applies && e.pair_fit_converter_multiplied;
+  out->pair_fit_converter_error = applies ? finite_or_zero(e.pair_fit_converter_error) : 0.0;
+  out->pair_fit_converter_error_std =
+      applies ? finite_or_zero(e.pair_fit_converter_error_std) : 0.0;
+  out->pair_fit_shift_kg = applies ? finite_or_zero(e.pair_fit_shift_kg) : 0.0;
+  out->pair_fit_shift_std_kg = applies ? finite_or_zero(e.pair_fit_shift_std_kg) : 0.0;
+}
+
 }  // namespace
 
 void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
@@ -236,6 +261,8 @@ void to_lcm(const DaemonStatus& s, vmass::status_t* out) {
   out->learnt_evidence_since_tyres = s.has_tick ? e.learnt_evidence_since_tyres : 0;
   out->known_mass = s.has_tick && e.known_mass;
   learnt_gears_to_lcm(s.has_tick ? e : Estimate{}, out);
+  tyre_watch_to_lcm(s.has_tick ? e : Estimate{}, out);
+  pair_fit_to_lcm(s.has_tick ? e : Estimate{}, out);
   out->commands_received = s.commands_received;
   out->last_command_utime = s.last_command_utime;
   out->last_command_result = s.last_command_result;

@@ -151,6 +151,17 @@ TEST(ConverterMap, TheDrivesPairsTellTheMapsErrorAndTakeItOffTheMass) {
   EXPECT_LT(fit->converter_error_std, 0.25 / std::sqrt(3.0));
   EXPECT_GT(fit->pairs, 1000);
   EXPECT_FALSE(no_fit.has_value());  // fit_pair_terms off: nothing to show
+  // What status_t and vmass-monitor show (schema 8): the same fit, carried by the estimate.
+  EXPECT_TRUE(fitted.pair_fit_applies);
+  EXPECT_TRUE(fitted.pair_fit_converter_multiplied);
+  EXPECT_EQ(fitted.pair_fit_pairs, fit->pairs);
+  EXPECT_EQ(fitted.pair_fit_converter_error, fit->converter_error);
+  EXPECT_EQ(fitted.pair_fit_converter_error_std, fit->converter_error_std);
+  EXPECT_EQ(fitted.pair_fit_rotating_error, fit->rotating_error);
+  EXPECT_EQ(fitted.pair_fit_shift_kg, fit->mass_shift_kg);
+  EXPECT_EQ(fitted.pair_fit_shift_std_kg, fit->mass_std_kg);
+  EXPECT_FALSE(unfitted.pair_fit_applies);
+  EXPECT_EQ(unfitted.pair_fit_shift_kg, 0.0);
 }
 
 }  // namespace

@@ -81,9 +81,12 @@ TEST(TyreWatchTest, AStepNotYetAChangeIsSuspectedAndTheSuspicionIsSaved) {
   TyreWatch restored(TyreWatchParams{});
   ASSERT_TRUE(restored.restore(watch.state()));
   EXPECT_DOUBLE_EQ(restored.suspected_variance(), watch.suspected_variance());
-  // A drive without a launch tells nothing new: the suspicion stands.
+  EXPECT_DOUBLE_EQ(restored.standing().best_sigma, v.best_sigma);
+  // A drive without a launch tells nothing new: the suspicion and the step shown stand.
   watch.end_drive();
   EXPECT_DOUBLE_EQ(watch.suspected_variance(), restored.suspected_variance());
+  EXPECT_DOUBLE_EQ(watch.standing().log_step, v.log_step);
+  EXPECT_EQ(watch.last_verdict().best_sigma, 0.0);  // what that drive's end found: nothing
 }
 
 TEST(TyreWatchTest, AStepSmallerThanTheMinimumIsNoChange) {

@@ -2,7 +2,7 @@
 # vmass-ctl against fake vmassds (fake_vmassd.cpp), in a private network namespace (loopback
 # only, 224.0.0.0/4 routed to it, ttl=0: nothing leaves the machine):
 #   - known-mass with --config: the config's URL and channels (not the defaults), the command as
-#     vmassd reads it (schema 7, utime from CLOCK_REALTIME, std 0.5 % of KG by default, the
+#     vmassd reads it (schema 8, utime from CLOCK_REALTIME, std 0.5 % of KG by default, the
 #     note), the answer matched by its id past a decoy for another command: exit 0, the line
 #   - reset-learnt, tyres-changed: exit 0; a refusal: exit 1 with vmassd's words; --lcm-url
 #     over the default
@@ -71,7 +71,7 @@ run known --config "$config" known-mass 1650 --note "weighbridge ticket 4711"
 accepted="vmassd: accepted: known mass 1650.0 kg (std 8.2 kg) from the next tick"
 [ "$(cat "$out/known.out")" = "$accepted" ] || fail "known-mass printed: $(cat "$out/known.out")"
 took_below 2.5 || fail "known-mass took $took s for an answer sent at once"
-received="command known_mass schema 7 mass_kg 1650 std_kg 8.25 clock_ok 1"
+received="command known_mass schema 8 mass_kg 1650 std_kg 8.25 clock_ok 1"
 grep -qx "$received note weighbridge ticket 4711" "$out/accept.txt" ||
   fail "the command as received: $(cat "$out/accept.txt")"
 
@@ -79,14 +79,14 @@ run reset --config "$config" reset-learnt
 [ "$rc" = 0 ] || fail "reset-learnt: exit $rc"
 grep -qx "vmassd: accepted: what was learnt about the car is forgotten .*" "$out/reset.out" ||
   fail "reset-learnt printed: $(cat "$out/reset.out")"
-grep -q "^command reset_learnt schema 7 .* clock_ok 1 " "$out/accept.txt" ||
+grep -q "^command reset_learnt schema 8 .* clock_ok 1 " "$out/accept.txt" ||
   fail "no reset_learnt received: $(cat "$out/accept.txt")"
 
 run tyres --config "$config" tyres-changed --note "new set, 205/55 R16"
 [ "$rc" = 0 ] || fail "tyres-changed: exit $rc"
 grep -qx "vmassd: accepted: new tyres - .*" "$out/tyres.out" ||
   fail "tyres-changed printed: $(cat "$out/tyres.out")"
-grep -qx "command tyres_changed schema 7 .* clock_ok 1 note new set, 205/55 R16" \
+grep -qx "command tyres_changed schema 8 .* clock_ok 1 note new set, 205/55 R16" \
   "$out/accept.txt" || fail "no tyres_changed received: $(cat "$out/accept.txt")"
 
 # Refused (default channels, --lcm-url): exit 1 with vmassd's words, past an "accepted" decoy.
@@ -94,7 +94,7 @@ run refused --lcm-url "$url_refuse" known-mass 99999 --std 20
 [ "$rc" = 1 ] || fail "refused: exit $rc"
 grep -qx "vmassd: refused: known mass 99999.0 kg is outside the config's plausible band .*" \
   "$out/refused.out" || fail "refused printed: $(cat "$out/refused.out")"
-grep -qx "command known_mass schema 7 mass_kg 99999 std_kg 20 clock_ok 1 note " \
+grep -qx "command known_mass schema 8 mass_kg 99999 std_kg 20 clock_ok 1 note " \
   "$out/refuse.txt" || fail "the refused command as received: $(cat "$out/refuse.txt")"
 
 # No answer: statuses that never name the command, then nothing at all.

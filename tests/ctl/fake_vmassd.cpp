@@ -89,7 +89,7 @@ class Fake {
   void publish(std::int64_t command_utime, const std::string& result) {
     vmass::status_t s{};
     s.utime = realtime_us();
-    s.schema_version = 7;  // vmass::service::kLcmSchemaVersion
+    s.schema_version = 8;  // vmass::service::kLcmSchemaVersion
     s.version = "0.0.0-fake";
     s.state_name = "running";
     s.commands_received = commands_;

@@ -130,6 +130,22 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   status.last.estimate.learnt_anchors = 4;       // schema 6
   status.last.estimate.learnt_tyre_changes = 1;  // schema 7
   status.last.estimate.learnt_evidence_since_tyres = 1;
+  Estimate& schema8 = status.last.estimate;  // the tyre watch and the pair-term fit
+  schema8.tyre_watch_launches = 7;
+  schema8.tyre_watch_stops = 5;
+  schema8.tyre_watch_changes = 1;
+  schema8.tyre_watch_step = 0.021;
+  schema8.tyre_watch_step_sigma = 3.2;
+  schema8.tyre_watch_suspected = true;
+  schema8.pair_fit_applies = true;
+  schema8.pair_fit_pairs = 412;
+  schema8.pair_fit_rotating_error = 0.125;
+  schema8.pair_fit_rotating_error_std = 0.0625;
+  schema8.pair_fit_converter_multiplied = true;
+  schema8.pair_fit_converter_error = -0.25;
+  schema8.pair_fit_converter_error_std = std::numeric_limits<double>::quiet_NaN();
+  schema8.pair_fit_shift_kg = 230.5;
+  schema8.pair_fit_shift_std_kg = 180.25;
   status.commands_received = 1;
   status.last_command_utime = 1733358000000000;
   status.last_command_result = "accepted: known mass 1650.0 kg (std 8.2 kg) from the next tick";
@@ -203,7 +219,7 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.tick_overruns, 2);
   EXPECT_EQ(s.jitter_p99_us, 240.0);
   EXPECT_TRUE(s.state_restored);
-  EXPECT_EQ(s.schema_version, 7);
+  EXPECT_EQ(s.schema_version, 8);
   ASSERT_EQ(s.num_verdicts, static_cast<int>(PairVerdict::kCount));
   EXPECT_EQ(s.verdict_name[0], "accepted");
   const auto steering = static_cast<std::size_t>(PairVerdict::kSteering);
@@ -222,6 +238,21 @@ TEST(LcmRoundTrip, EstimatePairsAndStatusArriveIntactAndFinite) {
   EXPECT_EQ(s.learnt_anchors, 4);
   EXPECT_EQ(s.learnt_tyre_changes, 1);
   EXPECT_EQ(s.learnt_evidence_since_tyres, 1);
+  EXPECT_EQ(s.tyre_watch_launches, 7);
+  EXPECT_EQ(s.tyre_watch_stops, 5);
+  EXPECT_EQ(s.tyre_watch_changes, 1);
+  EXPECT_EQ(s.tyre_watch_step, 0.021);
+  EXPECT_EQ(s.tyre_watch_step_sigma, 3.2);
+  EXPECT_TRUE(s.tyre_watch_suspected);
+  EXPECT_TRUE(s.pair_fit_applies);
+  EXPECT_EQ(s.pair_fit_pairs, 412);
+  EXPECT_EQ(s.pair_fit_rotating_error, 0.125);
+  EXPECT_EQ(s.pair_fit_rotating_error_std, 0.0625);
+  EXPECT_TRUE(s.pair_fit_converter_multiplied);
+  EXPECT_EQ(s.pair_fit_converter_error, -0.25);
+  EXPECT_EQ(s.pair_fit_converter_error_std, 0.0);  // never NaN on the wire
+  EXPECT_EQ(s.pair_fit_shift_kg, 230.5);
+  EXPECT_EQ(s.pair_fit_shift_std_kg, 180.25);
   EXPECT_TRUE(s.known_mass);
   EXPECT_EQ(s.commands_received, 1);
   EXPECT_EQ(s.last_command_utime, 1733358000000000);

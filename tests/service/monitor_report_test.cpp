@@ -30,6 +30,16 @@ vmass::status_t wide_status() {
     s.input_age_s.push_back(i == 3 ? -1.0 : 12345.678);
     s.input_valid.push_back(i % 2 == 0);
   }
+  s.tyre_watch_launches = s.tyre_watch_stops = s.tyre_watch_changes = 123456789;
+  s.tyre_watch_step = -0.1234;
+  s.tyre_watch_step_sigma = 12345.6;
+  s.tyre_watch_suspected = true;
+  s.pair_fit_applies = s.pair_fit_converter_multiplied = true;
+  s.pair_fit_rotating_error = s.pair_fit_converter_error = -12.345;
+  s.pair_fit_rotating_error_std = s.pair_fit_converter_error_std = 12.345;
+  s.pair_fit_shift_kg = -123456.0;
+  s.pair_fit_shift_std_kg = 123456.0;
+  s.pair_fit_pairs = 123456789;
   return s;
 }
 
@@ -66,7 +76,8 @@ TEST(MonitorReport, EveryLineFitsEightyColumns) {
   EXPECT_GE(count, 10);
   for (const char* item : {"26123.4 kg", "95% [25123.4, 27123.4] kg", "lateral 100.0 %",
                            "version 0.1.0", "98765432109 reopens", "speed INVALID", "gear ok",
-                           "accel_y never", "interface can0 is down", "jitter p50/p99/max"}) {
+                           "accel_y never", "interface can0 is down", "jitter p50/p99/max",
+                           "2345.6 std, suspected", "converter -1234 +- 1234 %"}) {
     EXPECT_NE(report.find(item), std::string::npos) << item << " missing:\n" << report;
   }
   // The path longer than a line keeps its start and its end.
@@ -140,6 +151,49 @@ TEST(MonitorReport, NewTyresSayWhatTaughtTheScaleSince) {
   s.learnt_evidence_since_tyres = 1;
   s.learnt_anchors = 0;
   EXPECT_TRUE(report_has(s, "\n          new tyres x2: 1 known mass since\n"));
+}
+
+// The tyre watch (schema 8): nothing until it holds a launch; then what it holds, the largest
+// step it tried and the changes it told.
+TEST(MonitorReport, TheTyreWatchSaysWhatItHoldsAndTold) {
+  vmass::status_t s{};
+  s.state_name = "running";
+  EXPECT_EQ(monitor_report("memq://", 0.0, 0.0, nullptr, &s).find("tyres"), std::string::npos);
+  s.tyre_watch_launches = 1;
+  EXPECT_TRUE(report_has(s, "\ntyres     1 launch and 0 stops since the last change\ndaemon"));
+  s.tyre_watch_launches = 12;
+  s.tyre_watch_stops = 8;
+  s.tyre_watch_step = 0.0183;
+  s.tyre_watch_step_sigma = 3.14;
+  s.tyre_watch_suspected = true;
+  EXPECT_TRUE(report_has(s,
+                         "\ntyres     12 launches and 8 stops since the last change\n"
+                         "          largest step +1.8 % (3.1 std, suspected)\n"));
+  s.tyre_watch_suspected = false;
+  s.tyre_watch_changes = 2;
+  EXPECT_TRUE(report_has(s, "(3.1 std)   2 changes told\n"));
+}
+
+// The drive's pair-term fit (schema 8), only while it applies; the converter only when some
+// pair held its multiplication.
+TEST(MonitorReport, ThePairTermFitIsShownWhileItApplies) {
+  vmass::status_t s{};
+  s.state_name = "running";
+  s.pair_fit_rotating_error = 0.12;
+  EXPECT_EQ(monitor_report("memq://", 0.0, 0.0, nullptr, &s).find("pair fit"), std::string::npos);
+  s.pair_fit_applies = true;
+  s.pair_fit_rotating_error_std = 0.09;
+  s.pair_fit_shift_kg = 231.0;
+  s.pair_fit_shift_std_kg = 180.4;
+  s.pair_fit_pairs = 412;
+  EXPECT_TRUE(
+      report_has(s, "\npair fit  rotating masses +12 +- 9 %   mass +231 +- 180 kg   412 pairs\n"));
+  s.pair_fit_converter_multiplied = true;
+  s.pair_fit_converter_error = -0.05;
+  s.pair_fit_converter_error_std = 0.1;
+  EXPECT_TRUE(report_has(s,
+                         "\npair fit  rotating masses +12 +- 9 %   converter -5 +- 10 %\n"
+                         "          mass +231 +- 180 kg   412 pairs\n"));
 }
 
 TEST(MonitorReport, ADeclaredMassSaysSo) {

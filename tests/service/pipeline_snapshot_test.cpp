@@ -601,6 +601,24 @@ TEST_F(StateFileTest, TheTyreWatchRoundTripsAndAVersionSevenFileStillLoads) {
   EXPECT_NE(service::implausible_state(wild, params).find("tyre_watch_window"), std::string::npos);
   Pipeline pipeline(params);
   EXPECT_FALSE(pipeline.restore(wild));
+
+  // What status_t shows (schema 8) from the restored watch at the next drive's first tick: the
+  // launches and stops held, and the largest step its window holds.
+  Pipeline restored(params);
+  ASSERT_TRUE(restored.restore(watched.snapshot));
+  restored.step(test::make_drive(test::DriveSpec{}).front());
+  const Estimate& e = restored.estimate();
+  EXPECT_EQ(e.tyre_watch_launches, 15);  // 12 settled, 2 and 1 in the window and the drive
+  EXPECT_EQ(e.tyre_watch_stops, 8);
+  EXPECT_EQ(e.tyre_watch_changes, 1);
+  // The step is the watch's own after the restart ended the saved drive (a power cycle).
+  TyreWatch watch(params.estimator.learning.tyre_watch);
+  ASSERT_TRUE(watch.restore(t));
+  watch.end_drive();
+  EXPECT_GT(e.tyre_watch_step_sigma, 0.0);
+  EXPECT_EQ(e.tyre_watch_step_sigma, watch.standing().best_sigma);
+  EXPECT_EQ(e.tyre_watch_step, std::expm1(watch.standing().log_step));
+  EXPECT_FALSE(e.tyre_watch_suspected);  // 0.1 std
 }
 
 // Another rolling radius makes what was learnt wrong: it is dropped and the mass kept. Another

@@ -149,6 +149,41 @@ std::string learnt_lines(const vmass::status_t& s) {
   return wrap_items("learnt", items);
 }
 
+/// The tyre watch, once it holds a launch or told a change: "12 launches and 8 stops since the
+/// last change   largest step +1.8 % (3.1 std, suspected)   1 change told".
+std::string tyre_watch_lines(const vmass::status_t& s) {
+  if (s.tyre_watch_launches + s.tyre_watch_stops <= 0 && s.tyre_watch_changes <= 0) return "";
+  std::vector<std::string> items = {
+      format("%lld launch%s and %lld stop%s since the last change", ll(s.tyre_watch_launches),
+             s.tyre_watch_launches == 1 ? "" : "es", ll(s.tyre_watch_stops),
+             s.tyre_watch_stops == 1 ? "" : "s")};
+  if (s.tyre_watch_step_sigma > 0.0) {
+    items.push_back(format("largest step %+.1f %% (%.1f std%s)", 100.0 * s.tyre_watch_step,
+                           s.tyre_watch_step_sigma, s.tyre_watch_suspected ? ", suspected" : ""));
+  }
+  if (s.tyre_watch_changes > 0) {
+    items.push_back(format("%lld change%s told", ll(s.tyre_watch_changes),
+                           s.tyre_watch_changes == 1 ? "" : "s"));
+  }
+  return wrap_items("tyres", items);
+}
+
+/// The drive's pair-term fit, while it applies: "rotating masses +12 +- 9 %   converter -5 +-
+/// 10 %   mass +230 +- 180 kg   412 pairs".
+std::string pair_fit_lines(const vmass::status_t& s) {
+  if (!s.pair_fit_applies) return "";
+  std::vector<std::string> items = {format("rotating masses %+.0f +- %.0f %%",
+                                           100.0 * s.pair_fit_rotating_error,
+                                           100.0 * s.pair_fit_rotating_error_std)};
+  if (s.pair_fit_converter_multiplied) {
+    items.push_back(format("converter %+.0f +- %.0f %%", 100.0 * s.pair_fit_converter_error,
+                           100.0 * s.pair_fit_converter_error_std));
+  }
+  items.push_back(format("mass %+.0f +- %.0f kg", s.pair_fit_shift_kg, s.pair_fit_shift_std_kg));
+  items.push_back(format("%lld pairs", ll(s.pair_fit_pairs)));
+  return wrap_items("pair fit", items);
+}
+
 /// vmassd's answer to the last command (vmass-ctl) and how long ago it was sent; "" before one.
 std::string command_lines(const vmass::status_t& s, std::int64_t now_utime) {
   if (s.last_command_utime == 0) return "";
@@ -257,7 +292,10 @@ std::string monitor_report(const std::string& url, double estimate_hz, double st
   if (const auto why = no_pair_items(context.no_pair); !why.empty()) {
     out += wrap_items("why not", why, kReportWidth, " ");
   }
-  if (status) out += learnt_lines(*status) + command_lines(*status, context.now_utime);
+  if (status) {
+    out += learnt_lines(*status) + tyre_watch_lines(*status) + pair_fit_lines(*status) +
+           command_lines(*status, context.now_utime);
+  }
   out += status ? status_lines(*status) : wrap_items("daemon", {"(no status received)"});
   return out;
 }

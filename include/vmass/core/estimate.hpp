@@ -124,6 +124,28 @@ struct Estimate {
   std::array<double, kMaxLearntGears> learnt_gear_correction_kg{};
   std::array<double, kMaxLearntGears> learnt_gear_std_kg{};
   long learnt_gear_drives = 0;
+  /// The tyre watch (TyreWatch): the launches and stops it holds since the last change (this
+  /// drive's included), the undeclared changes it told, and the largest step of the speed
+  /// signal's scale the window holds (a fraction, and in its std: a change beyond change_sigma;
+  /// beyond suspect_sigma suspected, and the interval holds it meanwhile).
+  long tyre_watch_launches = 0;
+  long tyre_watch_stops = 0;
+  long tyre_watch_changes = 0;
+  double tyre_watch_step = 0.0;
+  double tyre_watch_step_sigma = 0.0;
+  bool tyre_watch_suspected = false;
+  /// The drive's pair-term fit (PairTermFit) while it applies: the rotating masses' error c_rot
+  /// and the converter map's c_conv (fitted only when some pair held its multiplication), each
+  /// with its std, the pairs fitted, and the mass's shift with the std the terms leave, kg.
+  bool pair_fit_applies = false;
+  bool pair_fit_converter_multiplied = false;
+  long pair_fit_pairs = 0;
+  double pair_fit_rotating_error = 0.0;
+  double pair_fit_rotating_error_std = 0.0;
+  double pair_fit_converter_error = 0.0;
+  double pair_fit_converter_error_std = 0.0;
+  double pair_fit_shift_kg = 0.0;
+  double pair_fit_shift_std_kg = 0.0;
 
   bool has_mass() const { return mass_known; }
   /// Human-readable reason, e.g. "inputs invalid: speed, yaw_rate" (allocates; not for hot paths).

@@ -252,6 +252,9 @@ class Pipeline {
   void end_gear_evidence();
   /// What is learnt about each gear's rotating mass, into the estimate.
   void publish_learnt_gears();
+  /// What the tyre watch holds and the drive's pair-term fit, into the estimate.
+  void publish_tyre_watch();
+  void publish_pair_term_fit();
   /// The scale the pairs' force is divided by: the learnt one, less the gear-mix level its
   /// known-mass evidence holds that the applied gear corrections take off in kg.
   double scale_for_pairs() const;

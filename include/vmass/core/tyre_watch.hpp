@@ -126,12 +126,17 @@ class TyreWatch {
   /// Forget everything (a user's reset of what was learnt).
   void reset();
 
+  /// The launches and stops since the last change (this drive's included).
+  SpanSums held() const;
   /// One series' log s since the last change (NaN without any), and one span's std.
   double log_ratio(SpanKind kind) const;
   double launch_std() const;
   const TyreWatchState& state() const { return state_; }
   /// What the last end_drive() found.
   const TyreVerdict& last_verdict() const { return last_; }
+  /// The largest step the window holds now (after the last end_drive() or restore(); never
+  /// `changed`): what a status shows between drives' ends.
+  const TyreVerdict& standing() const { return standing_; }
   /// The square of a suspected step (0 when none): what the learnt scale may have moved by.
   double suspected_variance() const { return suspected_variance_; }
   bool restore(const TyreWatchState& state);
@@ -150,6 +155,7 @@ class TyreWatch {
   TyreWatchParams params_;
   TyreWatchState state_;
   TyreVerdict last_;
+  TyreVerdict standing_;
   double suspected_variance_ = 0.0;
 };
 

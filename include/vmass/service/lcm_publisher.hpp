@@ -43,7 +43,7 @@ std::string_view daemon_state_name(DaemonState s);
 
 /// Everything status_t reports, gathered by the publisher thread.
 /// The layout of vmass_mass_estimate_t and vmass_status_t (their schema_version field).
-constexpr std::int32_t kLcmSchemaVersion = 7;
+constexpr std::int32_t kLcmSchemaVersion = 8;
 
 /// Health counters of one estimator input (status_t's per-input arrays).
 struct InputHealth {
