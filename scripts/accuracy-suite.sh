@@ -3,7 +3,7 @@
 # vehicle population (30 vehicles x every scenario x 3 seeds, both kinds of knowledge, vmass's
 # estimators on their defaults and the baselines), the held-out vehicles, the ablation (each
 # realism effect alone on one nominal car) and a few drives for plots, and regenerates
-# docs/accuracy.md with docs/accuracy/*.png. About 30-40 minutes on 2 cores.
+# docs/accuracy.md with docs/accuracy/*.png. About 35-45 minutes on 2 cores.
 #
 #   scripts/accuracy-suite.sh                     (from anywhere)
 #   VEHICLES=7 SEEDS=1 scripts/accuracy-suite.sh  (a quick look; the report says what it ran)
@@ -55,6 +55,11 @@ done
   --estimators rls,bayes --jobs "$jobs" --out "$out/trucks.jsonl"
 "$bin/vmass-suite" --population trucks --held-out --vehicles "${TRUCKS_HELD_OUT:-10}" --seeds "$seeds" \
   --estimators rls,bayes --jobs "$jobs" --out "$out/trucks_held_out.jsonl"
+# The tractors' lives (issue 30): two known masses at different loads (drives 1 and 2), another
+# trailer coupled before drive 6.
+"$bin/vmass-suite" --population trucks --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" \
+  --known-mass-drives 1,2 --trailer-change-drive 6 --vehicles "${TRUCKS:-20}" --estimators bayes \
+  --jobs "$jobs" --out "$out/trucks_trailer.jsonl"
 "$bin/vmass-suite" --runs nominal:paper_exp2_eps3:1,nominal:paper_exp1_eps1:1,suv-18:urban:1,suv-4:heavy_rear_load:1 \
   --knowledge known_scale --series-dir "$out/series" --jobs "$jobs" --out "$out/series.jsonl"
 
@@ -70,7 +75,8 @@ rm -rf docs/accuracy
   --population-hash "$("$bin/vmass-suite" --population-hash)" \
   --seconds "$(( $(date +%s) - start ))"
 /usr/bin/python3 "$bin/vmass-accuracy-report" --trucks "$out/trucks.jsonl" \
-  --trucks-held-out "$out/trucks_held_out.jsonl" --out docs/accuracy-trucks.md \
+  --trucks-held-out "$out/trucks_held_out.jsonl" --trailer-lifetime "$out/trucks_trailer.jsonl" \
+  --out docs/accuracy-trucks.md \
   --command "TRUCKS=${TRUCKS:-20} TRUCKS_HELD_OUT=${TRUCKS_HELD_OUT:-10} SEEDS=$seeds scripts/accuracy-suite.sh" \
   --commit "$commit"
 echo "accuracy-suite: wrote docs/accuracy.md ($(( $(date +%s) - start )) s)"

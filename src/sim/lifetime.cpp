@@ -118,6 +118,14 @@ std::string change_cargo(const DrawnVehicle& d, const Seats& s, RandomStream& rn
   return loaded ? "cargo loaded" : "cargo unloaded";
 }
 
+// One change of the load while parked: cargo (a van, pickup, truck), or passengers or the boot.
+std::string change_load(const DrawnVehicle& vehicle, const Seats& seats, RandomStream& rng,
+                        Load* load) {
+  if (seats.cargo) return change_cargo(vehicle, seats, rng, load);
+  if (rng.chance(0.5)) return change_passengers(vehicle, rng, load);
+  return change_boot(vehicle, rng, load);
+}
+
 // New tyres: worn tread (about 2 mm) replaced by new (7-9 mm) on a radius of about 0.3 m
 // (cars) to 0.5 m (trucks): the radius grows by 1-3 %.
 double new_tyres_factor(const DrawnVehicle& vehicle, std::uint64_t life) {
@@ -130,6 +138,20 @@ std::string percent_of(double factor) {
   std::array<char, 16> text{};
   std::snprintf(text.data(), text.size(), "%+.1f %%", (factor - 1.0) * 100.0);
   return text.data();
+}
+
+// Another semi-trailer, of another kind and load, drawn apart from the life's loads: its load
+// is a cargo change worth the name, its drag area and rolling coefficient factors of the
+// combination's (a flatbed's to a high box's; its tyres and axles).
+void couple_another_trailer(const DrawnVehicle& vehicle, const Seats& seats, std::uint64_t life,
+                            Load* load, LifetimeDrive* drive) {
+  RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
+                   hash_name("lifetime_trailer") + life);
+  change_cargo(vehicle, seats, rng, load);
+  drive->trailer_drag_factor = rng.uniform(0.75, 1.3);
+  drive->trailer_rolling_factor = rng.uniform(0.85, 1.2);
+  drive->car_change = "another trailer (drag area " + percent_of(drive->trailer_drag_factor) +
+                      ", rolling " + percent_of(drive->trailer_rolling_factor) + ")";
 }
 
 }  // namespace
@@ -151,8 +173,15 @@ void fit_tyres(double tyre_radius_factor, TrueVehicle* vehicle) {
   speed_error = (1.0 + speed_error) / tyre_radius_factor - 1.0;
 }
 
+void couple_trailer(double drag_factor, double rolling_factor, TrueVehicle* vehicle) {
+  vehicle->drag_area_m2 *= drag_factor;
+  vehicle->rolling_resistance_coeff *= rolling_factor;
+  vehicle->rolling_resistance_speed_coeff_s2_per_m2 *= rolling_factor;
+}
+
 std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives,
-                                         std::uint64_t life, int tyre_change_drive) {
+                                         std::uint64_t life, int tyre_change_drive,
+                                         int trailer_change_drive) {
   const double new_tyres = new_tyres_factor(vehicle, life);
   const Seats seats = seats_of(vehicle);
   RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
@@ -161,30 +190,43 @@ std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives
   const std::size_t offset =
       static_cast<std::size_t>(rng.index(static_cast<int>(scenarios.size())));
   Load load = first_load(vehicle, seats, rng);
+  const bool trailer_change = vehicle.tractor && trailer_change_drive > 1;
+  LifetimeDrive trailer;  // the other trailer's factors
   std::vector<LifetimeDrive> out;
   for (int i = 1; i <= drives; ++i) {
     LifetimeDrive drive;
     drive.index = i;
     drive.scenario = scenarios[(offset + static_cast<std::size_t>(i) - 1) % scenarios.size()];
     drive.seed = life * 1000 + static_cast<std::uint64_t>(i);
+    const double before = total_kg(load);
     const bool change = i > 1 && (i % 2 == 0 || rng.chance(0.3));
+    const bool new_trailer = trailer_change && i == trailer_change_drive;
     if (change) {
-      const double before = total_kg(load);
-      if (seats.cargo) {
-        drive.load_change = change_cargo(vehicle, seats, rng, &load);
-      } else if (rng.chance(0.5)) {
-        drive.load_change = change_passengers(vehicle, rng, &load);
-      } else {
-        drive.load_change = change_boot(vehicle, rng, &load);
-      }
+      // A new trailer replaces that drive's load change, drawn all the same (on a copy) so that
+      // the life's later changes are drawn as without it.
+      Load discarded = load;
+      drive.load_change = change_load(vehicle, seats, rng, new_trailer ? &discarded : &load);
+    }
+    if (new_trailer) {
+      couple_another_trailer(vehicle, seats, life, &load, &trailer);
+      drive.load_change = "another trailer";
+      drive.car_change = trailer.car_change;
+    }
+    if (!drive.load_change.empty()) {
       drive.payload_change_kg = total_kg(load) - before;
       drive.load_change += " (" + signed_kg(drive.payload_change_kg) + ")";
     }
     drive.payload = items_of(load, seats);
+    if (trailer_change && i >= trailer_change_drive) {
+      drive.trailer_drag_factor = trailer.trailer_drag_factor;
+      drive.trailer_rolling_factor = trailer.trailer_rolling_factor;
+    }
     if (tyre_change_drive > 1 && i >= tyre_change_drive) {
       drive.tyre_radius_factor = new_tyres;
-      if (i == tyre_change_drive)
-        drive.car_change = "new tyres (radius " + percent_of(new_tyres) + ")";
+      if (i == tyre_change_drive) {
+        if (!drive.car_change.empty()) drive.car_change += "; ";
+        drive.car_change += "new tyres (radius " + percent_of(new_tyres) + ")";
+      }
     }
     out.push_back(drive);
   }

@@ -16,6 +16,7 @@
 #include "lifetime_run.hpp"
 #include "vmass/sim/lifetime.hpp"
 #include "vmass/sim/population.hpp"
+#include "vmass/sim/truck_population.hpp"
 
 namespace vmass::suite {
 namespace {
@@ -130,6 +131,47 @@ TEST(Lifetime, NewTyresComeBeforeTheirDriveAndLeaveTheLifeAsItWas) {
   sim::fit_tyres(1.02, &car);
   EXPECT_DOUBLE_EQ(car.wheel_radius_m, 1.02 * radius_m);
   EXPECT_NEAR(car.wheel_speed.radius_error_fraction, 1.01 / 1.02 - 1.0, 1e-12);
+}
+
+// Another trailer (vmass-suite --trailer-change-drive) is coupled before its drive: another
+// load on the fifth wheel, the combination's drag area and rolling coefficient scaled from then
+// on; the drives before it are the life's without. A car pulls no trailer: its life is as it was.
+TEST(Lifetime, AnotherTrailerComesBeforeItsDriveWithItsLoadAndResistances) {
+  const sim::DrawnVehicle tractor = sim::draw_truck_population(1, sim::kTruckFirstSeed).front();
+  ASSERT_TRUE(tractor.tractor);
+  const std::vector<sim::LifetimeDrive> plain = sim::plan_lifetime(tractor, 10, 3);
+  const std::vector<sim::LifetimeDrive> swapped = sim::plan_lifetime(tractor, 10, 3, 0, 6);
+  ASSERT_EQ(plain.size(), swapped.size());
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(plain[i].load_change, swapped[i].load_change);
+    EXPECT_DOUBLE_EQ(sim::payload_mass_kg(plain[i].payload),
+                     sim::payload_mass_kg(swapped[i].payload));
+    EXPECT_DOUBLE_EQ(swapped[i].trailer_drag_factor, 1.0);
+    EXPECT_TRUE(swapped[i].car_change.empty());
+  }
+  const sim::LifetimeDrive& sixth = swapped[5];
+  EXPECT_EQ(sixth.load_change.rfind("another trailer (", 0), 0u) << sixth.load_change;
+  EXPECT_NE(sixth.car_change.find("another trailer (drag area "), std::string::npos);
+  // A change worth the name: at least a tenth of the payload capacity.
+  EXPECT_GE(std::abs(sixth.payload_change_kg), 0.1 * (tractor.payload_capacity_kg - 100.0));
+  EXPECT_GE(sixth.trailer_drag_factor, 0.75);
+  EXPECT_LE(sixth.trailer_drag_factor, 1.3);
+  EXPECT_GE(sixth.trailer_rolling_factor, 0.85);
+  EXPECT_LE(sixth.trailer_rolling_factor, 1.2);
+  for (std::size_t i = 5; i < swapped.size(); ++i) {
+    EXPECT_EQ(swapped[i].trailer_drag_factor, sixth.trailer_drag_factor);
+    EXPECT_EQ(swapped[i].trailer_rolling_factor, sixth.trailer_rolling_factor);
+    EXPECT_EQ(swapped[i].scenario, plain[i].scenario);
+  }
+  sim::TrueVehicle combination = tractor.vehicle;
+  sim::couple_trailer(1.2, 0.9, &combination);
+  EXPECT_DOUBLE_EQ(combination.drag_area_m2, 1.2 * tractor.vehicle.drag_area_m2);
+  EXPECT_DOUBLE_EQ(combination.rolling_resistance_coeff,
+                   0.9 * tractor.vehicle.rolling_resistance_coeff);
+
+  const sim::DrawnVehicle van = sim::draw_vehicle(sim::VehicleClass::kVan, 5);
+  const std::vector<sim::LifetimeDrive> van_life = sim::plan_lifetime(van, 10, 2, 0, 6);
+  for (const sim::LifetimeDrive& d : van_life) EXPECT_EQ(d.trailer_drag_factor, 1.0);
 }
 
 }  // namespace

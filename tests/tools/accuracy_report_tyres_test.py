@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""vmass-accuracy-report's new-tyres table (--tyre-lifetime): lifetime rows grouped before the
-declared change, its drive and the one after, and after that; fresh rows left out; every number
-computed from the rows.
+"""vmass-accuracy-report's new-tyres table (--tyre-lifetime) and another trailer's
+(--trailer-lifetime): lifetime rows grouped before the change, its drive and the one after, and
+after that; fresh rows left out; every number computed from the rows.
 
   accuracy_report_tyres_test.py VMASS_ACCURACY_REPORT WORK_DIR
 """
@@ -37,10 +37,31 @@ def main():
         "| datasheet scale | yes | yes | 4-5 | 2 | 2.00 | 2.80 | 100 / 100 / 50 | 7.50 |",
         "| datasheet scale | yes | yes | 6+ | 3 | 0.50 | 0.70 | 100 / 100 / 100 | 10.00 |",
     ]
+    check(text, expected)
+
+    # Another trailer before drive 3 of a tractor's life, known masses on drives 1 and 2.
+    trailer = [dict(r, vehicle="tractor-200001", tyres_declared=False,
+                    known_mass_declared=r["drive"] <= 2 and r["mode"] == "lifetime",
+                    car_change="another trailer (drag area +12.0 %, rolling -5.0 %)"
+                    if r["drive"] == 3 else "") for r in rows]
+    path = os.path.join(work, "trailer.jsonl")
+    with open(path, "w", encoding="utf-8") as f:
+        f.writelines(json.dumps(r) + "\n" for r in trailer)
+    text = subprocess.run([sys.executable, report, "--trailer-lifetime", path, "--out", "-"],
+                          check=True, capture_output=True, text=True).stdout
+    check(text, [
+        "coupled before drive 3; a known mass declared on drives 1, 2 where",
+        "| datasheet scale | yes | yes | 1-2 | 2 | 0.50 | 0.90 | 100 / 100 / 100 | 4.50 |",
+        "| datasheet scale | yes | yes | 3-4 | 2 | 2.50 | 2.90 | 100 / 100 / 50 | 6.50 |",
+        "| datasheet scale | yes | yes | 5+ | 4 | 0.62 | 0.93 | 100 / 100 / 100 | 9.50 |",
+    ])
+    print("ok")
+
+
+def check(text, expected):
     missing = [e for e in expected if e not in text]
     if missing:
         sys.exit("missing from the report:\n" + "\n".join(missing) + "\n--- report:\n" + text)
-    print("ok")
 
 
 if __name__ == "__main__":

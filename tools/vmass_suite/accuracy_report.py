@@ -8,7 +8,9 @@
                         [--command "..."] [--commit SHA] [--population-hash HASH]
   vmass-accuracy-report --lifetime RUNS.jsonl --out -     (the lifetime tables alone, to stdout)
   vmass-accuracy-report --tyre-lifetime RUNS.jsonl --out - (the new tyres' table alone)
-  vmass-accuracy-report --trucks RUNS.jsonl [--trucks-held-out RUNS.jsonl] --out docs/accuracy-trucks.md
+  vmass-accuracy-report --trucks RUNS.jsonl [--trucks-held-out RUNS.jsonl]
+                        [--trailer-lifetime RUNS.jsonl] --out docs/accuracy-trucks.md
+  vmass-accuracy-report --trailer-lifetime RUNS.jsonl --out - (another trailer's table alone)
 
 Every number in the report is computed here from the JSON lines; nothing is typed in by hand.
 Statistics are over the SUPPORTED runs of a (scenario, estimator, knowledge) cell; a run whose
@@ -264,6 +266,9 @@ def truck_report(out):
         out.append("")
         excited_without_pairs(held, out)
         out.append("")
+    if args.trailer_lifetime:
+        out.append("## Another trailer (lifetime mode)\n")
+        trailer_table(load(args.trailer_lifetime), out)
 
 
 def unsupported_table(rows, out):
@@ -420,18 +425,8 @@ def tyre_group(d, change):
         else f"{change + 2}+"
 
 
-def tyre_table(rows, out):
-    """Lives with new tyres fitted and declared (vmass-suite --tyre-change-drive K
-    --tyre-change-declared): the lifetime runs by group of drives, before and after the change."""
-    life = [r for r in rows if r.get("mode") == "lifetime"]
-    changes = sorted({r["drive"] for r in life if r.get("tyres_declared")})
-    if not changes:
-        out.append("No life has its new tyres declared.\n")
-        return
-    change = changes[0]
-    out.append(f"New tyres (radius 1-3 % larger, the config's unchanged) fitted before drive "
-               f"{change} and declared at its start (`vmass-ctl tyres-changed`); a known mass "
-               f"on drive 1 where the row says so. Lifetime runs only.\n")
+def change_table(life, change, out):
+    """The lifetime rows by group of drives around the change before drive `change`."""
     out.append("| knowledge | deflection sensor | known mass | drives | runs | median \\|final\\| % "
                "| p90 % | covers at 20 s / 60 s / end % | median half-width % |")
     out.append("|" + "---|" * 9)
@@ -453,6 +448,40 @@ def tyre_table(rows, out):
                                f"{fmt(s['cov60'], 0)} / {fmt(s['covend'], 0)} | "
                                f"{fmt(s['halfwidth'])} |")
     out.append("")
+
+
+def tyre_table(rows, out):
+    """Lives with new tyres fitted and declared (vmass-suite --tyre-change-drive K
+    --tyre-change-declared): the lifetime runs by group of drives, before and after the change."""
+    life = [r for r in rows if r.get("mode") == "lifetime"]
+    changes = sorted({r["drive"] for r in life if r.get("tyres_declared")})
+    if not changes:
+        out.append("No life has its new tyres declared.\n")
+        return
+    change = changes[0]
+    out.append(f"New tyres (radius 1-3 % larger, the config's unchanged) fitted before drive "
+               f"{change} and declared at its start (`vmass-ctl tyres-changed`); a known mass "
+               f"on drive 1 where the row says so. Lifetime runs only.\n")
+    change_table(life, change, out)
+
+
+def trailer_table(rows, out):
+    """Tractors' lives with another trailer coupled (vmass-suite --trailer-change-drive L): the
+    lifetime runs by group of drives, before and after it."""
+    life = [r for r in rows if r.get("mode") == "lifetime"]
+    changes = sorted({r["drive"] for r in life
+                      if str(r.get("car_change", "")).startswith("another trailer")})
+    if not changes:
+        out.append("No life couples another trailer.\n")
+        return
+    change = changes[0]
+    known = sorted({r["drive"] for r in life if r.get("known_mass_declared")})
+    out.append(f"Another trailer (its load, drag area 0.75-1.3 and rolling coefficient 0.85-1.2 "
+               f"times the first one's; the config's unchanged) coupled before drive {change}; "
+               f"a known mass declared on drive{'s' if len(known) > 1 else ''} "
+               f"{', '.join(str(d) for d in known) or '(none)'} where the row says so. Lifetime "
+               f"runs only.\n")
+    change_table(life, change, out)
 
 
 def plot_series(series_dir, plots_dir, out):
@@ -569,6 +598,8 @@ def main():
     p.add_argument("--seconds", default="")
     p.add_argument("--trucks")
     p.add_argument("--trucks-held-out")
+    p.add_argument("--trailer-lifetime", help="vmass-suite --population trucks --lifetime "
+                   "--trailer-change-drive L (with --trucks, or alone)")
     p.add_argument("--torque-signals", nargs=2, metavar=("GEAR_INDEX", "SPEED_RATIO"),
                    help="vmass-suite --torque-signal engine_gear_index and engine_speed_ratio runs")
     args = p.parse_args()
@@ -580,6 +611,11 @@ def main():
     if args.trucks:
         out = []
         truck_report(out)
+        write_report(args.out, out)
+        return
+    if args.trailer_lifetime and not args.trucks:
+        out = []
+        trailer_table(load(args.trailer_lifetime), out)
         write_report(args.out, out)
         return
     if not args.population and args.tyre_lifetime and not args.lifetime:

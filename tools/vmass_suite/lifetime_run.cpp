@@ -211,6 +211,8 @@ nlohmann::json drive_json(const LifetimeSpec& spec, const sim::DrawnVehicle& veh
   j["payload_change_kg"] = drive.payload_change_kg;
   j["car_change"] = drive.car_change;
   j["tyre_radius_factor"] = drive.tyre_radius_factor;
+  j["trailer_drag_factor"] = drive.trailer_drag_factor;
+  j["trailer_rolling_factor"] = drive.trailer_rolling_factor;
   j["deflection_sensor"] = v.deflection;
   if (!spec.known_mass_drives.empty()) j["known_mass"] = v.known_mass;
   return j;
@@ -225,7 +227,10 @@ std::string simulate_drive(const sim::DrawnVehicle& vehicle, const sim::Lifetime
       !m.empty()) {
     return m;
   }
-  sim::fit_tyres(drive.tyre_radius_factor, &run->physics.vehicle);  // the config keeps its radius
+  // The config keeps its radius, drag area and rolling coefficient.
+  sim::fit_tyres(drive.tyre_radius_factor, &run->physics.vehicle);
+  sim::couple_trailer(drive.trailer_drag_factor, drive.trailer_rolling_factor,
+                      &run->physics.vehicle);
   return sim::simulate(run->physics, run->simulation, result);
 }
 
@@ -238,9 +243,9 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
   const std::vector<Variant> all = variants(spec, vehicle, work_dir);
   for (const Variant& v : all) std::filesystem::remove(v.state_path);
   const std::vector<sim::LifetimeDrive> plan =
-      spec.plan.empty()
-          ? sim::plan_lifetime(vehicle, spec.drives, spec.life, spec.tyre_change_drive)
-          : spec.plan;
+      spec.plan.empty() ? sim::plan_lifetime(vehicle, spec.drives, spec.life,
+                                             spec.tyre_change_drive, spec.trailer_change_drive)
+                        : spec.plan;
   for (const sim::LifetimeDrive& drive : plan) {
     sim::PopulationRun run;
     sim::SimulationResult result;

@@ -50,6 +50,9 @@ struct LifetimeSpec {
   /// With tyre_change_drive: the workshop declares the new tyres (Pipeline::tyres_changed(), as
   /// `vmass-ctl tyres-changed`) at the start of that drive.
   bool tyre_change_declared = false;
+  /// > 1: a tractor couples another trailer before this drive (sim::plan_lifetime), the
+  /// config's drag area and rolling coefficient unchanged.
+  int trailer_change_drive = 0;
   /// The declared known mass's relative std (a weighbridge's, or a datasheet's "empty").
   double known_mass_std_fraction = 0.005;
 };

@@ -11,6 +11,7 @@
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
 //   vmass-suite --lifetime DRIVES [--vehicles N | --vehicle-ids ID,...] [--held-out] [--lives K]
 //               [--known-mass-drives LIST] [--tyre-change-drive K [--tyre-change-declared]]
+//               [--trailer-change-drive L]
 //               [--knowledge ...] [--estimators bayes,rls] [--keep-dir DIR] [--series-dir DIR]
 //               [--jobs J] --out FILE.jsonl
 //   vmass-suite --list-scenarios | --population-hash
@@ -19,7 +20,9 @@
 // changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle;
 // --known-mass-drives also carries each with its true mass declared at those drives;
 // --tyre-change-drive fits new tyres (radius 1-3 % larger) before drive K of every life;
-// --tyre-change-declared has the workshop say so (vmass-ctl tyres-changed) at its start.
+// --tyre-change-declared has the workshop say so (vmass-ctl tyres-changed) at its start;
+// --trailer-change-drive has each tractor couple another trailer (its load, drag area and
+// rolling coefficient drawn) before drive L (--population trucks).
 //
 // --ablation runs one nominal vehicle with no effect, each effect alone, and all effects.
 // --series-dir DIR writes per-tick CSVs (10 Hz) of the runs named by --series RUN,... where
@@ -97,6 +100,7 @@ struct Options {
   std::string known_mass_drives;      ///< --lifetime: drives whose true mass is declared
   int tyre_change_drive = 0;          ///< --lifetime: new tyres before this drive (0: never)
   bool tyre_change_declared = false;  ///< --lifetime: ... and the workshop declares them
+  int trailer_change_drive = 0;       ///< --lifetime: another trailer before this drive
   int lives = 1;
   std::string keep_dir, vehicle_ids;
   std::string population = "cars";         ///< or trucks (truck_population.hpp)
@@ -287,6 +291,12 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
     return "--tyre-change-declared needs --tyre-change-drive";
   }
   base.tyre_change_declared = o.tyre_change_declared;
+  if (o.trailer_change_drive != 0 &&
+      (o.trailer_change_drive < 2 || o.trailer_change_drive > o.lifetime_drives)) {
+    return "--trailer-change-drive: " + std::to_string(o.trailer_change_drive) +
+           " is not a drive index 2.." + std::to_string(o.lifetime_drives);
+  }
+  base.trailer_change_drive = o.trailer_change_drive;
   std::vector<std::string> ids = split(o.vehicle_ids);
   if (ids.empty()) {
     ids = population_ids(o);
@@ -295,6 +305,9 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
     vmass::sim::DrawnVehicle probe;
     std::string error;
     if (!vmass::sim::parse_vehicle_id(id, &probe, &error)) return "--vehicle-ids: " + error;
+    if (base.trailer_change_drive != 0 && !probe.tractor) {
+      return "--trailer-change-drive: " + id + " pulls no trailer (tractors: --population trucks)";
+    }
     for (int life = 1; life <= o.lives; ++life) {
       vmass::suite::LifetimeSpec spec = base;
       spec.vehicle_id = id;
@@ -389,6 +402,9 @@ void add_lifetime_options(CLI::App& app, Options* o) {
   app.add_flag("--tyre-change-declared", o->tyre_change_declared,
                "--lifetime: the workshop declares those tyres (vmass-ctl tyres-changed) at the "
                "start of that drive");
+  app.add_option("--trailer-change-drive", o->trailer_change_drive,
+                 "--lifetime, tractors: another trailer (its load, drag area and rolling "
+                 "coefficient drawn, the config's unchanged) before this drive of every life");
   app.add_option("--vehicle-ids", o->vehicle_ids,
                  "--lifetime: these vehicles (CLASS-SEED,...) instead of the population's");
   app.add_option("--keep-dir", o->keep_dir,

@@ -10,8 +10,13 @@
 // the config's radius never hears of: the force a wheel torque makes and the wheels' speed
 // signal both change by it (fit_tyres).
 //
-// Not modelled: a trailer (it changes the drag, the rolling resistance and the pitch as well
-// as the mass, and the simulator's vehicle has no hitch).
+// A trailer change (plan_lifetime's trailer_change_drive; tractors only): the semi-trailer
+// uncoupled while parked and another coupled, of another kind (a curtainsider, a tanker, a
+// flatbed) and load. The simulator carries a trailer as its mass on the fifth wheel (see
+// truck_population.hpp), so the other trailer is another such mass, and its drag area and
+// rolling coefficient those of the combination times a drawn factor (couple_trailer): 0.75-1.3
+// for the drag area (a flatbed's to a high box's) and 0.85-1.2 for the rolling coefficient (its
+// tyres and axles). The config, written for the first trailer, is kept.
 //
 // Pure functions; thread-safe.
 #pragma once
@@ -38,6 +43,10 @@ struct LifetimeDrive {
   double payload_change_kg = 0.0;
   /// The tyres' rolling radius against the vehicle's as drawn: 1 until a tyre change.
   double tyre_radius_factor = 1.0;
+  /// The trailer's drag area and rolling coefficient against the combination's as drawn: 1
+  /// until a trailer change.
+  double trailer_drag_factor = 1.0;
+  double trailer_rolling_factor = 1.0;
   std::string car_change;  ///< what changed on the car itself before it; "" nothing
 };
 
@@ -49,9 +58,16 @@ std::vector<std::string> lifetime_scenario_names();
 /// other drives). The load changes before every even drive, and before an odd one with
 /// probability 0.3. With tyre_change_drive K > 1, new tyres are fitted before drive K (their
 /// radius drawn apart from the loads: a life's loads and drives are the same with and
-/// without).
+/// without). With trailer_change_drive L > 1 and a tractor, another trailer is coupled before
+/// drive L: its load and factors drawn apart too, the drives before it the same with and
+/// without.
 std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives,
-                                         std::uint64_t life, int tyre_change_drive = 0);
+                                         std::uint64_t life, int tyre_change_drive = 0,
+                                         int trailer_change_drive = 0);
+
+/// The combination with another trailer (LifetimeDrive's factors): its drag area and rolling
+/// coefficients scaled.
+void couple_trailer(double drag_factor, double rolling_factor, TrueVehicle* vehicle);
 
 /// The vehicle on the tyres of factor `tyre_radius_factor` (LifetimeDrive): its rolling radius
 /// scaled, and its speed signal, the wheels' turning times the radius the ESC assumes, scaled
