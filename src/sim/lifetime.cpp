@@ -140,18 +140,29 @@ std::string percent_of(double factor) {
   return text.data();
 }
 
+// A semi-trailer's kind, against the first one's: its factors of the combination's drag area
+// and rolling coefficient.
+struct Trailer {
+  double drag_factor = 1.0;
+  double rolling_factor = 1.0;
+  std::string described() const {
+    return "another trailer (drag area " + percent_of(drag_factor) + ", rolling " +
+           percent_of(rolling_factor) + ")";
+  }
+};
+
 // Another semi-trailer, of another kind and load, drawn apart from the life's loads: its load
-// is a cargo change worth the name, its drag area and rolling coefficient factors of the
-// combination's (a flatbed's to a high box's; its tyres and axles).
-void couple_another_trailer(const DrawnVehicle& vehicle, const Seats& seats, std::uint64_t life,
-                            Load* load, LifetimeDrive* drive) {
+// is a cargo change worth the name, its factors those of a flatbed to a high box (the drag area)
+// and of its tyres and axles (the rolling coefficient).
+Trailer couple_another_trailer(const DrawnVehicle& vehicle, const Seats& seats, std::uint64_t life,
+                               Load* load) {
   RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
                    hash_name("lifetime_trailer") + life);
   change_cargo(vehicle, seats, rng, load);
-  drive->trailer_drag_factor = rng.uniform(0.75, 1.3);
-  drive->trailer_rolling_factor = rng.uniform(0.85, 1.2);
-  drive->car_change = "another trailer (drag area " + percent_of(drive->trailer_drag_factor) +
-                      ", rolling " + percent_of(drive->trailer_rolling_factor) + ")";
+  Trailer trailer;
+  trailer.drag_factor = rng.uniform(0.75, 1.3);
+  trailer.rolling_factor = rng.uniform(0.85, 1.2);
+  return trailer;
 }
 
 }  // namespace
@@ -191,7 +202,7 @@ std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives
       static_cast<std::size_t>(rng.index(static_cast<int>(scenarios.size())));
   Load load = first_load(vehicle, seats, rng);
   const bool trailer_change = vehicle.tractor && trailer_change_drive > 1;
-  LifetimeDrive trailer;  // the other trailer's factors
+  Trailer trailer;  // the first one's until the change
   std::vector<LifetimeDrive> out;
   for (int i = 1; i <= drives; ++i) {
     LifetimeDrive drive;
@@ -208,19 +219,17 @@ std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives
       drive.load_change = change_load(vehicle, seats, rng, new_trailer ? &discarded : &load);
     }
     if (new_trailer) {
-      couple_another_trailer(vehicle, seats, life, &load, &trailer);
+      trailer = couple_another_trailer(vehicle, seats, life, &load);
       drive.load_change = "another trailer";
-      drive.car_change = trailer.car_change;
+      drive.car_change = trailer.described();
     }
     if (!drive.load_change.empty()) {
       drive.payload_change_kg = total_kg(load) - before;
       drive.load_change += " (" + signed_kg(drive.payload_change_kg) + ")";
     }
     drive.payload = items_of(load, seats);
-    if (trailer_change && i >= trailer_change_drive) {
-      drive.trailer_drag_factor = trailer.trailer_drag_factor;
-      drive.trailer_rolling_factor = trailer.trailer_rolling_factor;
-    }
+    drive.trailer_drag_factor = trailer.drag_factor;
+    drive.trailer_rolling_factor = trailer.rolling_factor;
     if (tyre_change_drive > 1 && i >= tyre_change_drive) {
       drive.tyre_radius_factor = new_tyres;
       if (i == tyre_change_drive) {
