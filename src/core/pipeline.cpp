@@ -130,6 +130,8 @@ void Pipeline::publish_learnt_gears() {
 }
 
 void Pipeline::publish_tyre_watch() {
+  if (tyre_watch_.revision() == published_tyre_revision_) return;
+  published_tyre_revision_ = tyre_watch_.revision();
   const SpanSums held = tyre_watch_.held();
   estimate_.tyre_watch_launches = std::lround(held.kind[std::size_t(SpanKind::kLaunch)].count);
   estimate_.tyre_watch_stops = std::lround(held.kind[std::size_t(SpanKind::kStop)].count);
@@ -425,7 +427,8 @@ void Pipeline::begin_after_restore(const Sample& sample) {
   const std::array<BlockCounters, kBlockCount> blocks = estimate_.blocks;
   estimate_ = Estimate{};
   estimate_.blocks = blocks;
-  published_gear_revision_ = -1;  // the learnt gears are shown again
+  published_gear_revision_ = -1;  // the learnt gears and the tyre watch are shown again
+  published_tyre_revision_ = -1;
   load_unchecked_ = true;
 }
 

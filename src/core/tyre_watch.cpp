@@ -45,6 +45,7 @@ void TyreWatch::add_span(SpanKind kind, double accel_dv_mps, double speed_dv_mps
   const double x = std::log(accel_dv_mps / speed_dv_mps);
   if (std::abs(x) > kMaxAbsLogRatio) return;
   state_.drive.kind[index(kind)].add(x);
+  ++revision_;
 }
 
 SpanSums TyreWatch::held() const {
@@ -142,6 +143,7 @@ void TyreWatch::update_suspicion() {
 }
 
 TyreVerdict TyreWatch::end_drive() {
+  ++revision_;
   last_ = TyreVerdict{};
   const SpanSums drive = state_.drive;
   state_.drive = SpanSums{};
@@ -180,6 +182,7 @@ void TyreWatch::tyres_declared() {
   state_.drive = SpanSums{};
   standing_ = TyreVerdict{};
   suspected_variance_ = 0.0;
+  ++revision_;
 }
 
 void TyreWatch::reset() {
@@ -187,6 +190,7 @@ void TyreWatch::reset() {
   last_ = TyreVerdict{};
   standing_ = TyreVerdict{};
   suspected_variance_ = 0.0;
+  ++revision_;
 }
 
 // The messages name the state file's keys.
@@ -213,6 +217,7 @@ bool TyreWatch::restore(const TyreWatchState& state) {
   if (!implausible(state).empty()) return false;
   state_ = state;
   update_suspicion();
+  ++revision_;
   return true;
 }
 

@@ -183,19 +183,17 @@ void tyre_watch_to_lcm(const Estimate& e, vmass::status_t* out) {
   out->tyre_watch_suspected = e.tyre_watch_suspected;
 }
 
-/// The drive's pair-term fit (schema 8); zeros when it does not apply.
+/// The drive's pair-term fit (schema 8); the estimate holds zeros when it does not apply.
 void pair_fit_to_lcm(const Estimate& e, vmass::status_t* out) {
-  const bool applies = e.pair_fit_applies;
-  out->pair_fit_applies = applies;
-  out->pair_fit_pairs = applies ? e.pair_fit_pairs : 0;
-  out->pair_fit_rotating_error = applies ? finite_or_zero(e.pair_fit_rotating_error) : 0.0;
-  out->pair_fit_rotating_error_std = applies ? finite_or_zero(e.pair_fit_rotating_error_std) : 0.0;
-  out->pair_fit_converter_multiplied = applies && e.pair_fit_converter_multiplied;
-  out->pair_fit_converter_error = applies ? finite_or_zero(e.pair_fit_converter_error) : 0.0;
-  out->pair_fit_converter_error_std =
-      applies ? finite_or_zero(e.pair_fit_converter_error_std) : 0.0;
-  out->pair_fit_shift_kg = applies ? finite_or_zero(e.pair_fit_shift_kg) : 0.0;
-  out->pair_fit_shift_std_kg = applies ? finite_or_zero(e.pair_fit_shift_std_kg) : 0.0;
+  out->pair_fit_applies = e.pair_fit_applies;
+  out->pair_fit_pairs = e.pair_fit_pairs;
+  out->pair_fit_rotating_error = finite_or_zero(e.pair_fit_rotating_error);
+  out->pair_fit_rotating_error_std = finite_or_zero(e.pair_fit_rotating_error_std);
+  out->pair_fit_converter_multiplied = e.pair_fit_converter_multiplied;
+  out->pair_fit_converter_error = finite_or_zero(e.pair_fit_converter_error);
+  out->pair_fit_converter_error_std = finite_or_zero(e.pair_fit_converter_error_std);
+  out->pair_fit_shift_kg = finite_or_zero(e.pair_fit_shift_kg);
+  out->pair_fit_shift_std_kg = finite_or_zero(e.pair_fit_shift_std_kg);
 }
 
 }  // namespace

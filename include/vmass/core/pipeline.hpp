@@ -369,6 +369,7 @@ class Pipeline {
   /// never corrects the next load of the same drive (a tractor's solo stretch its coupled one).
   LearntGearMasses applied_gear_masses_;
   long published_gear_revision_ = -1;  ///< gear_masses_'s revision in estimate_
+  long published_tyre_revision_ = -1;  ///< tyre_watch_'s revision in estimate_
   /// The current load's standstill reading, while it holds; a snapshot saves its evidence so
   /// far, which a restored pipeline holds until the load ends.
   StaticAnchor static_anchor_;

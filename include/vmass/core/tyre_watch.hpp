@@ -137,6 +137,8 @@ class TyreWatch {
   /// The largest step the window holds now (after the last end_drive() or restore(); never
   /// `changed`): what a status shows between drives' ends.
   const TyreVerdict& standing() const { return standing_; }
+  /// Counts every change of what the watch holds (a status republishes only then).
+  long revision() const { return revision_; }
   /// The square of a suspected step (0 when none): what the learnt scale may have moved by.
   double suspected_variance() const { return suspected_variance_; }
   bool restore(const TyreWatchState& state);
@@ -157,6 +159,7 @@ class TyreWatch {
   TyreVerdict last_;
   TyreVerdict standing_;
   double suspected_variance_ = 0.0;
+  long revision_ = 0;
 };
 
 }  // namespace vmass
