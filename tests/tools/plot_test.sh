@@ -50,6 +50,26 @@ awk -F, -v v="$version" 'NR > 1 && $4 != v { exit 1 }' csv/run_status.csv ||
   fail "status rows without version $version"
 echo "ok: LCM log plotted; its estimates are vmass-replay's, byte for byte"
 
+# The status CSV carries what status_t says of the drive: its last row's pair-term fit is the
+# one vmass-replay's summary gives for the same drive.
+"$bin/vmass-replay" --config d/config.yaml --log d/drive.log --json >summary.json 2>/dev/null ||
+  fail "vmass-replay --json"
+/usr/bin/python3 - csv/run_status.csv summary.json <<'PY' || fail "status CSV's pair-term fit"
+import csv, json, sys
+last = list(csv.DictReader(open(sys.argv[1])))[-1]
+fit = json.load(open(sys.argv[2]))["pair_term_fit"]
+want = {"pair_fit_applies": 1, "pair_fit_pairs": fit["pairs"],
+        "pair_fit_rotating_error": fit["rotating_error"],
+        "pair_fit_rotating_error_std": fit["rotating_error_std"],
+        "pair_fit_shift_kg": fit["mass_shift_kg"], "pair_fit_shift_std_kg": fit["mass_std_kg"]}
+bad = {k: (last[k], v) for k, v in want.items() if abs(float(last[k]) - v) > 1e-3 * max(1, abs(v))}
+if bad or int(last["pair_fit_pairs"]) < 100:
+    sys.exit(f"status CSV against vmass-replay: {bad or last['pair_fit_pairs']}")
+if not 0 < float(last["learnt_scale_std"]) < 0.2 or float(last["learnt_scale"]) != 1.0:
+    sys.exit(f"a first drive's learnt scale: {last['learnt_scale']} +- {last['learnt_scale_std']}")
+print(f"ok: status CSV's pair-term fit is vmass-replay's ({last['pair_fit_pairs']} pairs)")
+PY
+
 "$bin/vmass-plot" --estimates d/vehicle.dbc --out bad.png >bad.txt 2>&1 &&
   fail "a DBC was plotted"
 grep -q "vehicle.dbc: missing columns" bad.txt || fail "refusal: $(cat bad.txt)"

@@ -10,12 +10,15 @@
 // log; a row before the first estimate (mass_known false) leaves its mass cells empty. The
 // status CSV has one row per status message: time_s, uptime_s, state, version, mass_kg, ticks,
 // tick_overruns, jitter_p99_us, frames_received, frames_decoded, frames_malformed,
-// inputs_valid (of num_inputs), num_inputs. The pairs CSV (vmassd with lcm.publish_pairs) has
+// inputs_valid (of num_inputs), num_inputs, then what is learnt about the car (learnt_*), the
+// tyre watch (tyre_watch_*) and the drive's pair-term fit (pair_fit_*), as status_t carries
+// them (kStatusHeader). The pairs CSV (vmassd with lcm.publish_pairs) has
 // one row per candidate pair: time_s, block, verdict, accepted, y_n, delta_accel_mps2, weight,
 // noise_std_n, rotating_n, rotating_mass_kg, gear, test_ratio (a per-gear study of the rotating
 // masses reads it: tools/vmass_suite/pairs_by_gear.py). Exit codes: 0 ok, 1 a CSV cannot be
 // written, 2 usage or a file that is not an LCM log; a message that does not decode is counted and
 // skipped.
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -72,15 +75,39 @@ void write_estimate(std::FILE* f, const vmass::mass_estimate_t& e) {
                e.lateral_availability, initial);
 }
 
+/// The status CSV's columns: the daemon's health, then what is learnt about the car, the tyre
+/// watch and the drive's pair-term fit (schema 8).
+constexpr const char* kStatusHeader =
+    "time_s,uptime_s,state,version,mass_kg,ticks,tick_overruns,jitter_p99_us,frames_received,"
+    "frames_decoded,frames_malformed,inputs_valid,num_inputs,"
+    "learnt_scale,learnt_scale_std,learnt_evidence,learnt_changes,learnt_anchors,"
+    "learnt_tyre_changes,learnt_gear_drives,"
+    "tyre_watch_launches,tyre_watch_stops,tyre_watch_changes,tyre_watch_step,"
+    "tyre_watch_step_sigma,tyre_watch_suspected,"
+    "pair_fit_applies,pair_fit_pairs,pair_fit_rotating_error,pair_fit_rotating_error_std,"
+    "pair_fit_converter_multiplied,pair_fit_converter_error,pair_fit_converter_error_std,"
+    "pair_fit_shift_kg,pair_fit_shift_std_kg";
+
+long long as_ll(std::int64_t v) { return static_cast<long long>(v); }
+
 void write_status(std::FILE* f, const vmass::status_t& s) {
   int valid = 0;
   for (bool v : s.input_valid) valid += v ? 1 : 0;
-  std::fprintf(f, "%.2f,%.3f,%s,%s,%.3f,%lld,%lld,%.1f,%lld,%lld,%lld,%d,%d\n",
+  std::fprintf(f, "%.2f,%.3f,%s,%s,%.3f,%lld,%lld,%.1f,%lld,%lld,%lld,%d,%d,",
                static_cast<double>(s.utime) * 1e-6, s.uptime_s, s.state_name.c_str(),
-               s.version.c_str(), s.mass_kg, static_cast<long long>(s.ticks),
-               static_cast<long long>(s.tick_overruns), s.jitter_p99_us,
-               static_cast<long long>(s.frames_received), static_cast<long long>(s.frames_decoded),
-               static_cast<long long>(s.frames_malformed), valid, s.num_inputs);
+               s.version.c_str(), s.mass_kg, as_ll(s.ticks), as_ll(s.tick_overruns),
+               s.jitter_p99_us, as_ll(s.frames_received), as_ll(s.frames_decoded),
+               as_ll(s.frames_malformed), valid, s.num_inputs);
+  std::fprintf(f, "%.6f,%.6f,%lld,%lld,%lld,%lld,%lld,", s.learnt_scale, s.learnt_scale_std,
+               as_ll(s.learnt_evidence), as_ll(s.learnt_changes), as_ll(s.learnt_anchors),
+               as_ll(s.learnt_tyre_changes), as_ll(s.learnt_gear_drives));
+  std::fprintf(f, "%lld,%lld,%lld,%.6f,%.3f,%d,", as_ll(s.tyre_watch_launches),
+               as_ll(s.tyre_watch_stops), as_ll(s.tyre_watch_changes), s.tyre_watch_step,
+               s.tyre_watch_step_sigma, s.tyre_watch_suspected ? 1 : 0);
+  std::fprintf(f, "%d,%lld,%.6f,%.6f,%d,%.6f,%.6f,%.3f,%.3f\n", s.pair_fit_applies ? 1 : 0,
+               as_ll(s.pair_fit_pairs), s.pair_fit_rotating_error, s.pair_fit_rotating_error_std,
+               s.pair_fit_converter_multiplied ? 1 : 0, s.pair_fit_converter_error,
+               s.pair_fit_converter_error_std, s.pair_fit_shift_kg, s.pair_fit_shift_std_kg);
 }
 
 /// A candidate pair (the ticks where a block offered none are not written).
@@ -124,9 +151,7 @@ int main(int argc, char** argv) {
                       "time_s,mass_kg,mass_ci_low_kg,mass_ci_high_kg,mu_n,status,mass_std_kg,"
                       "reason,longitudinal_pairs,lateral_pairs,longitudinal_availability,"
                       "lateral_availability,initial_mass_kg");
-  File st = open_csv(o.status_csv,
-                     "time_s,uptime_s,state,version,mass_kg,ticks,tick_overruns,jitter_p99_us,"
-                     "frames_received,frames_decoded,frames_malformed,inputs_valid,num_inputs");
+  File st = open_csv(o.status_csv, kStatusHeader);
   File pairs = open_csv(o.pairs_csv,
                         "time_s,block,verdict,accepted,y_n,delta_accel_mps2,weight,noise_std_n,"
                         "rotating_n,rotating_mass_kg,gear,test_ratio");
