@@ -160,8 +160,10 @@ EstimatorResult fresh_drive(const Variant& v, const DecodedDrive& d, const Truth
   return run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
 }
 
-bool is_known_mass_drive(const LifetimeSpec& spec, int index) {
-  for (int i : spec.known_mass_drives) {
+bool is_known_mass_drive(const LifetimeSpec& spec, const sim::DrawnVehicle& vehicle, int index) {
+  const bool truck_list = vehicle.vehicle_class == sim::VehicleClass::kHeavyTruck &&
+                          !spec.truck_known_mass_drives.empty();
+  for (int i : truck_list ? spec.truck_known_mass_drives : spec.known_mass_drives) {
     if (i == index) return true;
   }
   return false;
@@ -278,7 +280,7 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       }
       bool restored = false;
       std::string restore_error;
-      const bool declares = v.known_mass && is_known_mass_drive(spec, drive.index);
+      const bool declares = v.known_mass && is_known_mass_drive(spec, vehicle, drive.index);
       const double true_mass_kg = result.truth.front().mass_kg;
       const Declarations told{declares ? true_mass_kg : 0.0,
                               spec.known_mass_std_fraction * true_mass_kg,

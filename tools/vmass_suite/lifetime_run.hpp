@@ -45,6 +45,9 @@ struct LifetimeSpec {
   /// Non-empty: every variant is also carried with its true mass declared as a known mass
   /// (Pipeline::declare_known_mass, a weighbridge ticket) at the start of these drives (1-based).
   std::vector<int> known_mass_drives;
+  /// Heavy trucks: these drives instead (empty: known_mass_drives). Issue 30 asks a truck for two
+  /// known masses at different loads (every even drive's load is changed), a car for one.
+  std::vector<int> truck_known_mass_drives;
   /// > 1: new tyres before this drive (sim::plan_lifetime), the config's radius unchanged.
   int tyre_change_drive = 0;
   /// With tyre_change_drive: the workshop declares the new tyres (Pipeline::tyres_changed(), as

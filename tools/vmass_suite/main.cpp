@@ -10,7 +10,8 @@
 //   vmass-suite --ablation VEHICLE|auto [--scenarios ...] [--seeds K] --out FILE.jsonl
 //   vmass-suite --runs VEHICLE:SCENARIO:SEED,... [--series-dir DIR] --out FILE.jsonl
 //   vmass-suite --lifetime DRIVES [--vehicles N | --vehicle-ids ID,...] [--held-out] [--lives K]
-//               [--known-mass-drives LIST] [--tyre-change-drive K [--tyre-change-declared]]
+//               [--known-mass-drives LIST [--truck-known-mass-drives LIST]]
+//               [--tyre-change-drive K [--tyre-change-declared]]
 //               [--trailer-change-drive L]
 //               [--knowledge ...] [--estimators bayes,rls] [--keep-dir DIR] [--series-dir DIR]
 //               [--jobs J] --out FILE.jsonl
@@ -18,7 +19,8 @@
 //
 // --lifetime drives each vehicle DRIVES drives in a row through the daemon's state file (loads
 // changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle;
-// --known-mass-drives also carries each with its true mass declared at those drives;
+// --known-mass-drives also carries each with its true mass declared at those drives, a heavy
+// truck at --truck-known-mass-drives where given (issue 30: two at different loads for a truck);
 // --tyre-change-drive fits new tyres (radius 1-3 % larger) before drive K of every life;
 // --tyre-change-declared has the workshop say so (vmass-ctl tyres-changed) at its start;
 // --trailer-change-drive has each tractor couple another trailer (its load, drag area and
@@ -96,11 +98,12 @@ struct Options {
   std::string scenarios, estimators, knowledge, realism = "all", estimator_yaml_path, out;
   std::string ablation, series_dir, series, runs;
   int jobs = 0;
-  int lifetime_drives = 0;            ///< > 0: the lifetime mode
-  std::string known_mass_drives;      ///< --lifetime: drives whose true mass is declared
-  int tyre_change_drive = 0;          ///< --lifetime: new tyres before this drive (0: never)
-  bool tyre_change_declared = false;  ///< --lifetime: ... and the workshop declares them
-  int trailer_change_drive = 0;       ///< --lifetime: another trailer before this drive
+  int lifetime_drives = 0;              ///< > 0: the lifetime mode
+  std::string known_mass_drives;        ///< --lifetime: drives whose true mass is declared
+  std::string truck_known_mass_drives;  ///< --lifetime: the same for heavy trucks ("": the same)
+  int tyre_change_drive = 0;            ///< --lifetime: new tyres before this drive (0: never)
+  bool tyre_change_declared = false;    ///< --lifetime: ... and the workshop declares them
+  int trailer_change_drive = 0;         ///< --lifetime: another trailer before this drive
   int lives = 1;
   std::string keep_dir, vehicle_ids;
   std::string population = "cars";         ///< or trucks (truck_population.hpp)
@@ -249,6 +252,20 @@ std::string plan(const Options& o, std::vector<vmass::suite::RunSpec>* specs) {
   return "";
 }
 
+// A comma-separated list of drive indices 1..drives into *out; "" or what is wrong.
+std::string parse_drive_list(const std::string& option, const std::string& text, int drives,
+                             std::vector<int>* out) {
+  for (const std::string& d : split(text)) {
+    int index = 0;
+    const auto r = std::from_chars(d.data(), d.data() + d.size(), index);
+    if (r.ec != std::errc() || r.ptr != d.data() + d.size() || index < 1 || index > drives) {
+      return option + ": '" + d + "' is not a drive index 1.." + std::to_string(drives);
+    }
+    out->push_back(index);
+  }
+  return "";
+}
+
 // The lifetime mode's lives: every vehicle of the population (or the held-out set), K lives.
 std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeSpec>* specs) {
   vmass::suite::LifetimeSpec base;
@@ -271,15 +288,18 @@ std::string plan_lifetimes(const Options& o, std::vector<vmass::suite::LifetimeS
   if (!realism) return "--realism: '" + o.realism + "' is not all, none, all-EFFECT or A+B";
   base.realism = *realism;
   base.realism_label = o.realism;
-  for (const std::string& d : split(o.known_mass_drives)) {
-    int index = 0;
-    const auto r = std::from_chars(d.data(), d.data() + d.size(), index);
-    if (r.ec != std::errc() || r.ptr != d.data() + d.size() || index < 1 ||
-        index > o.lifetime_drives) {
-      return "--known-mass-drives: '" + d + "' is not a drive index 1.." +
-             std::to_string(o.lifetime_drives);
-    }
-    base.known_mass_drives.push_back(index);
+  if (auto m = parse_drive_list("--known-mass-drives", o.known_mass_drives, o.lifetime_drives,
+                                &base.known_mass_drives);
+      !m.empty()) {
+    return m;
+  }
+  if (auto m = parse_drive_list("--truck-known-mass-drives", o.truck_known_mass_drives,
+                                o.lifetime_drives, &base.truck_known_mass_drives);
+      !m.empty()) {
+    return m;
+  }
+  if (!base.truck_known_mass_drives.empty() && base.known_mass_drives.empty()) {
+    return "--truck-known-mass-drives needs --known-mass-drives";
   }
   if (o.tyre_change_drive != 0 &&
       (o.tyre_change_drive < 2 || o.tyre_change_drive > o.lifetime_drives)) {
@@ -396,6 +416,9 @@ void add_lifetime_options(CLI::App& app, Options* o) {
   app.add_option("--known-mass-drives", o->known_mass_drives,
                  "--lifetime: also carry every variant with its true mass declared as a known "
                  "mass at the start of these drives (e.g. 1)");
+  app.add_option("--truck-known-mass-drives", o->truck_known_mass_drives,
+                 "--lifetime, with --known-mass-drives: a heavy truck's drives instead (e.g. "
+                 "1,2: two known masses at different loads)");
   app.add_option("--tyre-change-drive", o->tyre_change_drive,
                  "--lifetime: new tyres (radius 1-3 % larger, the config's unchanged) before "
                  "this drive of every life");
