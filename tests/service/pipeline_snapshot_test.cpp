@@ -454,7 +454,8 @@ TEST_F(StateFileTest, TheLearntSectionsRoundTripAndOlderFormatsStillLoad) {
   g.reference_precision = 3125.5;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j)
-      g.covariance_kg2[std::size_t(i * kMaxLearntGears + j)] = i == j ? 900.0 + i : 0.1 * (i + j);
+      g.covariance_kg2[std::size_t(i) * kMaxLearntGears + std::size_t(j)] =
+          i == j ? 900.0 + i : 0.1 * (i + j);
   }
   geared.snapshot.learnt = LearntScaleState{0.0312, 1.7e-4, 2, 0, 1, -0.05, 2e-4};
   LearntScaleState& anchors = geared.snapshot.learnt;
@@ -538,7 +539,7 @@ TEST_F(StateFileTest, ThePairTermFitRoundTripsAndAVersionSixFileStillLoads) {
   PairTermSumsState& sums = fitted.snapshot.pair_term_sums;
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) {
-      sums.normal[std::size_t(4 * r + c)] = r == c ? 10.0 + r : 0.125 * (r + c + 1);
+      sums.normal[4 * std::size_t(r) + std::size_t(c)] = r == c ? 10.0 + r : 0.125 * (r + c + 1);
     }
     sums.moment[std::size_t(r)] = 1650.5 * (r + 1);
   }
