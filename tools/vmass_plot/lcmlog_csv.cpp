@@ -12,12 +12,11 @@
 // tick_overruns, jitter_p99_us, frames_received, frames_decoded, frames_malformed,
 // inputs_valid (of num_inputs), num_inputs, then what is learnt about the car (learnt_*), the
 // tyre watch (tyre_watch_*) and the drive's pair-term fit (pair_fit_*), as status_t carries
-// them (kStatusHeader). The pairs CSV (vmassd with lcm.publish_pairs) has
-// one row per candidate pair: time_s, block, verdict, accepted, y_n, delta_accel_mps2, weight,
-// noise_std_n, rotating_n, rotating_mass_kg, gear, test_ratio (a per-gear study of the rotating
-// masses reads it: tools/vmass_suite/pairs_by_gear.py). Exit codes: 0 ok, 1 a CSV cannot be
-// written, 2 usage or a file that is not an LCM log; a message that does not decode is counted and
-// skipped.
+// them (kStatusHeader). The pairs CSV (vmassd with lcm.publish_pairs) has one row per candidate
+// pair: time_s, block, verdict, accepted, y_n, delta_accel_mps2, weight, noise_std_n,
+// rotating_n, rotating_mass_kg, gear, test_ratio (a per-gear study of the rotating masses reads
+// it: tools/vmass_suite/pairs_by_gear.py). Exit codes: 0 ok, 1 a CSV cannot be written, 2 usage
+// or a file that is not an LCM log; a message that does not decode is counted and skipped.
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
