@@ -5,10 +5,10 @@ after that; fresh rows left out; every number computed from the rows.
 
   accuracy_report_tyres_test.py VMASS_ACCURACY_REPORT WORK_DIR
 """
-import json
 import os
-import subprocess
 import sys
+
+from report_check import check, report_text
 
 
 def row(drive, error, covered, known=True, mode="lifetime"):
@@ -26,11 +26,7 @@ def main():
             row(4, 3.0, 0), row(5, -1.0, 1),                   # its drive and the next
             row(6, 0.5, 1), row(7, -0.25, 1), row(8, 0.75, 1),  # after
             row(6, 9.0, 0, mode="fresh")]                      # not a lifetime row
-    path = os.path.join(work, "tyres.jsonl")
-    with open(path, "w", encoding="utf-8") as f:
-        f.writelines(json.dumps(r) + "\n" for r in rows)
-    text = subprocess.run([sys.executable, report, "--tyre-lifetime", path, "--out", "-"],
-                          check=True, capture_output=True, text=True).stdout
+    text = report_text(report, "--tyre-lifetime", rows, os.path.join(work, "tyres.jsonl"))
     expected = [
         "fitted before drive 4 and declared at its start",
         "| datasheet scale | yes | yes | 1-3 | 3 | 1.00 | 1.80 | 100 / 100 / 100 | 5.00 |",
@@ -44,11 +40,8 @@ def main():
                     known_mass_declared=r["drive"] <= 2 and r["mode"] == "lifetime",
                     car_change="another trailer (drag area +12.0 %, rolling -5.0 %)"
                     if r["drive"] == 3 else "") for r in rows]
-    path = os.path.join(work, "trailer.jsonl")
-    with open(path, "w", encoding="utf-8") as f:
-        f.writelines(json.dumps(r) + "\n" for r in trailer)
-    text = subprocess.run([sys.executable, report, "--trailer-lifetime", path, "--out", "-"],
-                          check=True, capture_output=True, text=True).stdout
+    text = report_text(report, "--trailer-lifetime", trailer,
+                       os.path.join(work, "trailer.jsonl"))
     check(text, [
         "coupled before drive 3; a known mass declared on drives 1, 2 where",
         "| datasheet scale | yes | yes | 1-2 | 2 | 0.50 | 0.90 | 100 / 100 / 100 | 4.50 |",
@@ -56,12 +49,6 @@ def main():
         "| datasheet scale | yes | yes | 5+ | 4 | 0.62 | 0.93 | 100 / 100 / 100 | 9.50 |",
     ])
     print("ok")
-
-
-def check(text, expected):
-    missing = [e for e in expected if e not in text]
-    if missing:
-        sys.exit("missing from the report:\n" + "\n".join(missing) + "\n--- report:\n" + text)
 
 
 if __name__ == "__main__":
