@@ -13,6 +13,7 @@ std::string LoadChangeParams::validate() const {
   c.non_negative("min_change_fraction", min_change_fraction);
   if (min_pairs < 1) c.fail("min_pairs", "must be >= 1");
   if (batch_size < 0) c.fail("batch_size", "must be >= 0 (0: the estimator's bayes.batch_size)");
+  if (!(change_prior > 0.0 && change_prior < 1.0)) c.fail("change_prior", "must be in (0, 1)");
   return c.message();
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vmass/core/load_change_odds.hpp"
 #include "vmass/core/param_check.hpp"
 #include "vmass/core/plausible_band.hpp"
 
@@ -930,6 +931,12 @@ double Pipeline::model_std_kg(double mass_kg) const {
   const double scale_variance =
       (learnt_.replaces_datasheet() ? learnt_.log_scale_var() : declared_scale_variance(v)) +
       tyre_watch_.suspected_variance();
+  return model_std_kg(mass_kg, scale_variance);
+}
+
+double Pipeline::unshared_model_std_kg(double mass_kg) const { return model_std_kg(mass_kg, 0.0); }
+
+double Pipeline::model_std_kg(double mass_kg, double scale_variance) const {
   const double relative =
       std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
   // The rotating masses' and the converter map's errors move the mass by their share of it, in
@@ -938,7 +945,8 @@ double Pipeline::model_std_kg(double mass_kg) const {
     return std::hypot(relative * std::abs(mass_kg), term_fit_.mass_std_kg);
   }
   const double rotating_kg = rotating_std_kg(mass_kg);
-  const double converter_kg = kUniformStdPerBound * v.torque_converter_map_accuracy_fraction *
+  const double converter_kg = kUniformStdPerBound *
+                              params_.vehicle.torque_converter_map_accuracy_fraction *
                               converter_sensitivity_.sensitivity_kg();
   return std::hypot(relative * std::abs(mass_kg), rotating_kg, converter_kg);
 }
@@ -1003,19 +1011,42 @@ double Pipeline::published_half_width(const RegressorState& state) const {
 
 // A suspected load change (LoadChangeMonitor::suspects): the published interval spans the main
 // belief's and the challenger's, each with the model error, so that it holds whichever is right
-// until the monitor decides. The estimate is the challenger's: its own 95 % interval already
-// excludes the belief, so the drive since the stop is the better evidence of today's load.
+// until the monitor decides. While the challenger is undecided the estimate is its own: its 95 %
+// interval already excludes the belief, so the drive since the stop is the better evidence of
+// today's load. Once it has had its pairs and still neither decides nor agrees, the estimate is
+// the two weighted by the probability that the load changed: a part of a drive, in fewer gears
+// than the whole, reads further from it than its statistics say, and on a truck most such
+// suspicions at a drive's end were of no change (docs/estimator.md).
 void Pipeline::span_challenger() {
   const RegressorState c = load_monitor_.challenger().state();
   if (c.mass_kg >= estimate_.plausible_low_kg && c.mass_kg <= estimate_.plausible_high_kg) {
-    estimate_.mass_kg = c.mass_kg;
-    estimate_.mu_n = c.mu_n;
+    const double p = load_monitor_.undecided() ? 1.0 : probability_load_changed(c);
+    estimate_.mass_kg = p * c.mass_kg + (1.0 - p) * estimate_.mass_kg;
+    estimate_.mu_n = p * c.mu_n + (1.0 - p) * estimate_.mu_n;
   }
   const double half_width = published_half_width(c);
   estimate_.ci_low_kg = std::min(estimate_.ci_low_kg, c.mass_kg - half_width);
   estimate_.ci_high_kg = std::max(estimate_.ci_high_kg, c.mass_kg + half_width);
   estimate_.mass_std_kg = std::max(estimate_.mass_std_kg,
                                    0.5 * (estimate_.ci_high_kg - estimate_.ci_low_kg) / kNormal95);
+}
+
+// The challenger against the belief before the stop, each with the model error it does not
+// share with the other (both are read through the same lumped scale).
+double Pipeline::probability_load_changed(const RegressorState& challenger) const {
+  const RegressorState& before = belief_before_stop_;
+  const double std_kg = std::sqrt(challenger.mass_std_kg * challenger.mass_std_kg +
+                                  before.mass_std_kg * before.mass_std_kg +
+                                  std::pow(unshared_model_std_kg(challenger.mass_kg), 2) +
+                                  std::pow(unshared_model_std_kg(before.mass_kg), 2));
+  // A changed load is anywhere between empty and full; without a maximum, in the plausible band.
+  const VehicleParams& v = params_.vehicle;
+  const double capacity_kg = v.max_mass_kg - v.empty_mass_kg;
+  const double span_kg = std::isfinite(capacity_kg) && capacity_kg > 0.0
+                             ? capacity_kg
+                             : estimate_.plausible_high_kg - estimate_.plausible_low_kg;
+  return load_change_probability(challenger.mass_kg - before.mass_kg, std_kg, span_kg,
+                                 params_.estimator.load_change.change_prior);
 }
 
 void Pipeline::publish_state(const RegressorState& state) {

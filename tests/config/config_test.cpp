@@ -114,6 +114,19 @@ TEST(Config, TheLoadMonitorsBatchIsReadAndChecked) {
   EXPECT_NE(bad.error.find("estimator.load_change.batch_size"), std::string::npos) << bad.error;
 }
 
+TEST(Config, TheLoadMonitorsChangePriorIsReadAndChecked) {
+  const std::string section = "estimator:\n  load_change:\n    change_prior: ";
+  const ConfigLoad ok = load_config_text(std::string(kMinimal) + section + "0.2\n", "prior.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_EQ(ok.config->pipeline.estimator.load_change.change_prior, 0.2);
+  for (const char* bad_value : {"0.0", "1.0", "-0.5"}) {
+    const ConfigLoad bad =
+        load_config_text(std::string(kMinimal) + section + bad_value + "\n", "prior.yaml");
+    ASSERT_FALSE(bad.ok()) << bad_value;
+    EXPECT_NE(bad.error.find("estimator.load_change.change_prior"), std::string::npos) << bad.error;
+  }
+}
+
 TEST(Config, TheProvisionalLagSpreadIsReadAndChecked) {
   const std::string section = "estimator:\n  longitudinal:\n    lag:\n      provisional_std_s: ";
   const ConfigLoad ok = load_config_text(std::string(kMinimal) + section + "0.05\n", "lag.yaml");

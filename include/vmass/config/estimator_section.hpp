@@ -52,7 +52,7 @@ inline constexpr std::array<Field<StaticInitParams>, 16> kStaticInitFields{{
     {"max_grade_change_mps2", &StaticInitParams::max_grade_change_mps2},
 }};
 
-inline constexpr std::array<Field<LoadChangeParams>, 8> kLoadChangeFields{{
+inline constexpr std::array<Field<LoadChangeParams>, 9> kLoadChangeFields{{
     {"detect_in_motion", &LoadChangeParams::detect_in_motion},
     {"min_stop_s", &LoadChangeParams::min_stop_s},
     {"decide_sigma", &LoadChangeParams::decide_sigma},
@@ -61,6 +61,7 @@ inline constexpr std::array<Field<LoadChangeParams>, 8> kLoadChangeFields{{
     {"batch_size", &LoadChangeParams::batch_size},
     {"differencing_dt_s", &LoadChangeParams::differencing_dt_s},
     {"filter_cutoff_hz", &LoadChangeParams::filter_cutoff_hz},
+    {"change_prior", &LoadChangeParams::change_prior},
 }};
 
 inline constexpr std::array<Field<LongitudinalParams>, 17> kLongitudinalFields{{

@@ -47,6 +47,10 @@ struct LoadChangeParams {
   /// grows with the band) and the challenger is suspected of a change that did not happen.
   double differencing_dt_s = 0.6;
   double filter_cutoff_hz = 0.7;
+  /// The probability that a long stop changed the load, before the drive since says anything
+  /// (load_change_odds.hpp): weighs the challenger against the belief once the challenger has
+  /// its min_pairs and still neither decides nor agrees. In (0, 1).
+  double change_prior = 0.5;
 
   std::string validate() const;
 };

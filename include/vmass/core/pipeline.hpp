@@ -318,8 +318,14 @@ class Pipeline {
   /// Half the published 95 % interval of a belief: the regression's and the model error's.
   double published_half_width(const RegressorState& state) const;
   void span_challenger();
+  /// How likely the last long stop changed the load (load_change_odds.hpp).
+  double probability_load_changed(const RegressorState& challenger) const;
   /// mass_model_std_kg for a mass (see Estimate).
   double model_std_kg(double mass_kg) const;
+  /// The part of it that two readings of one load do not share: all but the lumped scale's.
+  double unshared_model_std_kg(double mass_kg) const;
+  /// The model error with the lumped scale's variance given.
+  double model_std_kg(double mass_kg, double scale_variance) const;
 
   PipelineParams params_;
   StaticInitializer static_init_;
