@@ -14,7 +14,7 @@
 namespace vmass {
 namespace {
 
-TEST(LoadChangeOdds, IsBayesRuleBetweenTheReadingsErrorAndTheBand) {
+TEST(LoadChangeOdds, IsBayesRuleBetweenTheReadingsErrorAndTheSpan) {
   // d = 2 s: the normal's likelihood exp(-2) against sqrt(2 pi) s / W, both halves of the prior.
   const double same = std::exp(-2.0);
   const double changed = std::sqrt(2.0 * kPi) * 100.0 / 2000.0;
