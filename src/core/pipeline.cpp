@@ -1040,11 +1040,9 @@ double Pipeline::probability_load_changed(const RegressorState& challenger) cons
                                   std::pow(unshared_model_std_kg(challenger.mass_kg), 2) +
                                   std::pow(unshared_model_std_kg(before.mass_kg), 2));
   // A changed load is anywhere between empty and full; without a maximum, in the plausible band.
-  const VehicleParams& v = params_.vehicle;
-  const double capacity_kg = v.max_mass_kg - v.empty_mass_kg;
-  const double span_kg = std::isfinite(capacity_kg) && capacity_kg > 0.0
-                             ? capacity_kg
-                             : estimate_.plausible_high_kg - estimate_.plausible_low_kg;
+  const double capacity_kg = params_.vehicle.payload_capacity_kg();
+  const double span_kg =
+      capacity_kg > 0.0 ? capacity_kg : estimate_.plausible_high_kg - estimate_.plausible_low_kg;
   return load_change_probability(challenger.mass_kg - before.mass_kg, std_kg, span_kg,
                                  params_.estimator.load_change.change_prior);
 }

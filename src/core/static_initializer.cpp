@@ -95,8 +95,8 @@ StaticMass StaticInitializer::static_mass_for(double deflection_m, double deflec
 
 MassPrior StaticInitializer::no_static_prior() const {
   MassPrior p;
-  const double capacity_kg = vehicle_.max_mass_kg - vehicle_.empty_mass_kg;
-  if (std::isfinite(capacity_kg) && capacity_kg > 0.0) {
+  const double capacity_kg = vehicle_.payload_capacity_kg();
+  if (capacity_kg > 0.0) {
     // Uniform between empty and fully loaded: mean half the capacity, std capacity / sqrt(12).
     p.mass_kg = vehicle_.empty_mass_kg + 0.5 * capacity_kg;
     p.mass_std_kg = std::hypot(base_std_kg(), capacity_kg / std::sqrt(12.0));

@@ -9,6 +9,8 @@
 // Plain values; thread-safe to share read-only.
 #pragma once
 
+#include <cmath>
+
 #include <limits>
 #include <string>
 #include <vector>
@@ -95,6 +97,11 @@ struct VehicleParams {
   double driveline_efficiency_accuracy_fraction = 0.03;
 
   double cg_to_rear_axle_m() const { return wheelbase_m - cg_to_front_axle_m; }
+  /// The payload between empty and the maximum permissible mass; 0 when no maximum is known.
+  double payload_capacity_kg() const {
+    const double capacity_kg = max_mass_kg - empty_mass_kg;
+    return std::isfinite(capacity_kg) && capacity_kg > 0.0 ? capacity_kg : 0.0;
+  }
   /// Equivalent rotating mass for the engaged gear; the constant when the gear is unknown.
   double rotating_mass_for_gear(int gear, bool gear_valid) const;
   /// Gear ratios and the final drive are known: wheel torque can come from engine torque.
