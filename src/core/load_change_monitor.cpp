@@ -27,12 +27,13 @@ BayesParams challenger_bayes_params(BayesParams bayes, int batch_size) {
 }  // namespace
 
 LoadChangeMonitor::LoadChangeMonitor(const LoadChangeParams& params, const RlsParams& rls,
-                                     const BayesParams& bayes, bool use_rls,
-                                     const MassPrior& start_prior, double empty_mass_kg,
-                                     double standstill_speed_mps)
+                                     const BayesParams& bayes, const SupervisorParams& supervisor,
+                                     bool use_rls, const MassPrior& start_prior,
+                                     double empty_mass_kg, double standstill_speed_mps)
     : params_(params),
       rls_(rls),
       bayes_(challenger_bayes_params(bayes, params.batch_size)),
+      supervisor_(supervisor),
       use_rls_(use_rls),
       start_prior_(start_prior),
       empty_mass_kg_(empty_mass_kg),
@@ -63,12 +64,15 @@ bool LoadChangeMonitor::step(const Sample& sample) {
   // Driving again after a stop that may have changed the load.
   long_stop_ = false;
   regressor().reset(start_prior_);
+  supervisor_.on_regressor_reset();
   active_ = true;
   return true;
 }
 
-void LoadChangeMonitor::offer(const RegressionPair& pair) {
-  if (active_) regressor().update(pair);
+void LoadChangeMonitor::offer(Block block, const Extraction& extraction) {
+  if (!active_) return;
+  bool changed = false;
+  supervisor_.offer(block, extraction, regressor(), &changed);
 }
 
 bool LoadChangeMonitor::contradicts(const RegressorState& main) const {

@@ -92,8 +92,8 @@ Pipeline::Pipeline(const PipelineParams& params)
     : params_(params),
       static_init_(params.vehicle, params.suspension, params.estimator.static_init),
       load_monitor_(params.estimator.load_change, params.estimator.rls, params.estimator.bayes,
-                    params.estimator.type == RegressorType::kRls, static_init_.no_static_prior(),
-                    params.vehicle.empty_mass_kg,
+                    params.estimator.supervisor, params.estimator.type == RegressorType::kRls,
+                    static_init_.no_static_prior(), params.vehicle.empty_mass_kg,
                     params.estimator.static_init.standstill_speed_mps),
       longitudinal_(params.vehicle, params.estimator.longitudinal, params.estimator.differencing),
       lateral_(params.vehicle, params.estimator.lateral, params.estimator.differencing),
@@ -323,15 +323,15 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
   Extraction longitudinal = monitor_longitudinal_.step(sample);
   Extraction lateral = monitor_lateral_.step(sample);
   to_belief_units(&longitudinal.pair);
+  longitudinal.pair.information = monitor_pair_information_;
+  lateral.pair.information = monitor_pair_information_;
+  load_monitor_.offer(Block::kLongitudinal, longitudinal);
+  load_monitor_.offer(Block::kLateral, lateral);
   Extraction released;
-  for (Extraction* e : {&longitudinal, &lateral}) {
-    e->pair.information = monitor_pair_information_;
-    if (e->has_pair()) load_monitor_.offer(e->pair);
-  }
   while (monitor_longitudinal_.pop_released(&released)) {
     to_belief_units(&released.pair);
     released.pair.information = monitor_pair_information_;
-    if (released.has_pair()) load_monitor_.offer(released.pair);
+    load_monitor_.offer(Block::kLongitudinal, released);
   }
 }
 

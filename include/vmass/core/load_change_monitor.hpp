@@ -4,7 +4,9 @@
 // Load changes only at a standstill. After every standstill of at least min_stop_s, a
 // challenger regressor (the same kind as the estimator's) starts from the no-static prior and
 // learns from the pairs that follow, unweighted by the main belief; its pairs come from their
-// own extractors with a quicker differencing (many short pairs decide sooner). The main belief
+// own extractors. A supervisor of its own weighs them against the challenger's own belief, as
+// the main one does the belief's: an unmodelled force (a retarder, a shift the gates missed)
+// that the main belief refuses must not decide the challenger. The main belief
 // keeps everything the earlier drive taught. "Main" below is the main belief as it was when the
 // challenger started: the pairs since the stop would pull the running belief towards the
 // challenger and hide the change. When the two disagree beyond chance,
@@ -27,6 +29,7 @@
 #include "vmass/core/mass_prior.hpp"
 #include "vmass/core/rls_estimator.hpp"
 #include "vmass/core/sample.hpp"
+#include "vmass/core/supervisor.hpp"
 
 namespace vmass {
 
@@ -60,14 +63,15 @@ class LoadChangeMonitor {
   /// `start_prior`: where a challenger starts (the no-static prior); `use_rls`: the kind of
   /// the main regressor.
   LoadChangeMonitor(const LoadChangeParams& params, const RlsParams& rls, const BayesParams& bayes,
-                    bool use_rls, const MassPrior& start_prior, double empty_mass_kg,
-                    double standstill_speed_mps);
+                    const SupervisorParams& supervisor, bool use_rls, const MassPrior& start_prior,
+                    double empty_mass_kg, double standstill_speed_mps);
 
   /// Tracks standstills; a long one (re)starts the challenger when driving resumes. Returns
   /// true on the tick it (re)starts.
   bool step(const Sample& sample);
-  /// A pair the extractors accepted (before the main belief weighed it).
-  void offer(const RegressionPair& pair);
+  /// One block's extraction from the challenger's extractors: while a challenger runs, its
+  /// supervisor weighs the pair (if any) against the challenger's belief, or refuses it.
+  void offer(Block block, const Extraction& extraction);
   /// True when the challenger now contradicts `main` (see the header); the caller then takes
   /// challenger() as its belief and calls dismiss().
   bool contradicts(const RegressorState& main) const;
@@ -92,6 +96,7 @@ class LoadChangeMonitor {
   LoadChangeParams params_;
   RlsEstimator rls_;
   BayesEstimator bayes_;
+  Supervisor supervisor_;
   bool use_rls_;
   MassPrior start_prior_;
   double empty_mass_kg_;
