@@ -6,10 +6,10 @@
 // learns from the pairs that follow, unweighted by the main belief; its pairs come from their
 // own extractors. A supervisor of its own weighs them against the challenger's own belief, as
 // the main one does the belief's: an unmodelled force (a retarder, a shift the gates missed)
-// that the main belief refuses must not decide the challenger. The main belief
-// keeps everything the earlier drive taught. "Main" below is the main belief as it was when the
-// challenger started: the pairs since the stop would pull the running belief towards the
-// challenger and hide the change. When the two disagree beyond chance,
+// that the main belief refuses must not decide the challenger. The main belief keeps everything
+// the earlier drive taught. "Main" below is the main belief as it was when the challenger
+// started: the pairs since the stop would pull the running belief towards the challenger and
+// hide the change. When the two disagree beyond chance,
 //   |M_challenger - M_main| > decide_sigma sqrt(s_challenger^2 + s_main^2)
 //   and > min_change_fraction M_empty, after min_pairs pairs of the challenger,
 // the load changed at that stop: the challenger's belief becomes the estimate. Before that, once
