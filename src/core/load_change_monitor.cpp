@@ -63,6 +63,8 @@ bool LoadChangeMonitor::step(const Sample& sample) {
   if (!long_stop_) return false;
   // Driving again after a stop that may have changed the load.
   long_stop_ = false;
+  ended_active_ = active_;
+  if (active_) ended_ = challenger().state();
   regressor().reset(start_prior_);
   supervisor_.on_regressor_reset();
   active_ = true;
@@ -84,6 +86,10 @@ bool LoadChangeMonitor::contradicts(const RegressorState& main) const {
          difference > params_.decide_sigma * std::hypot(c.mass_std_kg, main.mass_std_kg);
 }
 
+bool LoadChangeMonitor::ended_in_suspicion(const RegressorState& main) const {
+  return ended_active_ && ended_.pairs_used >= params_.min_pairs && reads_apart(ended_, main);
+}
+
 bool LoadChangeMonitor::undecided() const {
   return active_ && challenger().state().pairs_used < params_.min_pairs;
 }
@@ -91,10 +97,14 @@ bool LoadChangeMonitor::undecided() const {
 bool LoadChangeMonitor::suspects(const RegressorState& main) const {
   if (!active_) return false;
   const RegressorState c = challenger().state();
-  if (c.pairs_used == 0) return false;
-  const bool outside = main.mass_kg < c.ci_low_kg || main.mass_kg > c.ci_high_kg;
+  return c.pairs_used > 0 && reads_apart(c, main);
+}
+
+bool LoadChangeMonitor::reads_apart(const RegressorState& challenger,
+                                    const RegressorState& main) const {
+  const bool outside = main.mass_kg < challenger.ci_low_kg || main.mass_kg > challenger.ci_high_kg;
   return outside &&
-         std::abs(c.mass_kg - main.mass_kg) > params_.min_change_fraction * empty_mass_kg_;
+         std::abs(challenger.mass_kg - main.mass_kg) > params_.min_change_fraction * empty_mass_kg_;
 }
 
 }  // namespace vmass

@@ -142,6 +142,26 @@ TEST_P(LoadChangeMonitorTest, PairsTheChallengersOwnBeliefCannotExplainAreRefuse
   EXPECT_FALSE(m.suspects(belief(1600.0, 5.0)));
 }
 
+// Given a drive between two long stops, the next long stop keeps what its challenger read: a
+// lasting suspicion only with its min_pairs, and only against a belief its interval excludes.
+TEST_P(LoadChangeMonitorTest, ALongStopKeepsWhetherTheDriveBeforeItEndedInASuspicion) {
+  LoadChangeMonitor m = make_monitor(GetParam());
+  double t = stop_then_drive(&m, 0.0, 6.0);
+  offer_pairs(&m, 1900.0, 100, 9);  // suspects 1600 kg, fewer than min_pairs
+  ASSERT_TRUE(m.suspects(belief(1600.0, 5.0)));
+  t = stop_then_drive(&m, t, 6.0);
+  EXPECT_FALSE(m.ended_in_suspicion(belief(1600.0, 5.0)));  // too few pairs to last
+  offer_pairs(&m, 1900.0, 500, 10);
+  const RegressorState read = m.challenger().state();
+  t = stop_then_drive(&m, t, 2.0);  // a junction ends no drive
+  EXPECT_FALSE(m.ended_in_suspicion(belief(1600.0, 5.0)));
+  stop_then_drive(&m, t, 6.0);
+  EXPECT_TRUE(m.ended_in_suspicion(belief(1600.0, 5.0)));
+  EXPECT_FALSE(m.ended_in_suspicion(belief(read.mass_kg, 5.0)));  // inside its interval
+  EXPECT_EQ(m.ended().pairs_used, read.pairs_used);
+  EXPECT_EQ(m.challenger().state().pairs_used, 0);  // the new challenger starts afresh
+}
+
 TEST(LoadChangeMonitor, ABayesChallengerSuspectsAfterItsOwnBatchNotTheEstimators) {
   LoadChangeParams own_batch;  // the default: its own batch of 10
   LoadChangeParams estimators_batch;

@@ -18,7 +18,10 @@
 // challenger's mass with an interval that spans both beliefs (suspects()), since the drive
 // since the stop says the main one may no longer hold. A later stop
 // restarts the challenger; when nothing changed it simply agrees with the main belief and is
-// dropped at the next stop.
+// dropped at the next stop. What the challenger a restart ends had read is kept (ended(),
+// ended_in_suspicion()): a drive between two stops that still excluded the main belief when it
+// ended, undecided, may have read another load (the pipeline then weighs whether to leave that
+// drive out of the main belief).
 //
 // Pure: time comes from the samples. Not thread-safe; allocates nothing after construction.
 #pragma once
@@ -81,6 +84,13 @@ class LoadChangeMonitor {
   /// True while a challenger runs without the min_pairs it needs to decide: the load may have
   /// changed at the last stop and the drive has not yet shown either way.
   bool undecided() const;
+  /// True when the challenger the last restart ended had its min_pairs and still suspected
+  /// `main` (the belief it was judged against): that drive ended in a lasting suspicion.
+  bool ended_in_suspicion(const RegressorState& main) const;
+  const RegressorState& ended() const { return ended_; }
+  bool ended_active() const { return ended_active_; }
+  /// `reading`'s 95 % interval excludes `belief`'s mass, by more than min_change_fraction.
+  bool reads_apart(const RegressorState& reading, const RegressorState& belief) const;
   const MassRegressor& challenger() const;
   const RlsEstimator& challenger_rls() const { return rls_; }
   const BayesEstimator& challenger_bayes() const { return bayes_; }
@@ -105,6 +115,8 @@ class LoadChangeMonitor {
   TimeUs standing_since_us_ = 0;
   bool long_stop_ = false;  ///< the current standstill lasted min_stop_s
   bool active_ = false;
+  bool ended_active_ = false;  ///< a challenger ran until the last restart
+  RegressorState ended_;       ///< its state then
 };
 
 }  // namespace vmass

@@ -289,6 +289,12 @@ class Pipeline {
   void begin_after_restore(const Sample& sample);
   /// The load-change monitor's challenger becomes the belief (a load change seen in motion).
   void adopt_challenger();
+  /// The drive since the last long stop but one ended in a suspicion a change explains best.
+  bool ended_drive_read_another_load() const;
+  /// Keeps the belief without that drive, until a later drive tells whether its load is gone.
+  void hold_interlude();
+  /// At a later stop: the belief without the held drive again, if the load went back.
+  bool judge_interlude();
   /// Offer the tick's extractions to the supervisor.
   void offer_pairs(const Sample& sample, StepResult* result);
   /// A pair the belief is fitted on, into the interval's model-term sensitivities.
@@ -355,8 +361,22 @@ class Pipeline {
   bool term_fit_applies_ = false;
   PairTermFit term_fit_;
   RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
-  double pair_information_;            ///< RegressionPair::information of every extracted pair
-  double monitor_pair_information_;    ///< the same for the load monitor's pairs
+  /// The regressor then (the kind in use), to drop an undecided drive from the belief; valid
+  /// while segment_revertible_.
+  RlsEstimator rls_before_stop_;
+  BayesEstimator bayes_before_stop_;
+  bool segment_revertible_ = false;
+  /// A drive held while a later one tells whether its load is gone (hold_interlude): the
+  /// belief without it, that belief's state and what the held drive read.
+  bool interlude_pending_ = false;
+  RlsEstimator rls_without_interlude_;
+  BayesEstimator bayes_without_interlude_;
+  GearPairSums sums_without_interlude_;
+  PairTermSums term_sums_without_interlude_;
+  RegressorState belief_without_interlude_;
+  RegressorState interlude_reading_;
+  double pair_information_;          ///< RegressionPair::information of every extracted pair
+  double monitor_pair_information_;  ///< the same for the load monitor's pairs
   bool has_prior_ = false;
   bool has_plausible_ = false;  ///< an estimate of the current load was plausible
   StatusReason prior_reason_ = StatusReason::kWaitingForStandstill;
