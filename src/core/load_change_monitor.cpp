@@ -100,11 +100,11 @@ bool LoadChangeMonitor::suspects(const RegressorState& main) const {
   return c.pairs_used > 0 && reads_apart(c, main);
 }
 
-bool LoadChangeMonitor::reads_apart(const RegressorState& challenger,
-                                    const RegressorState& main) const {
-  const bool outside = main.mass_kg < challenger.ci_low_kg || main.mass_kg > challenger.ci_high_kg;
+bool LoadChangeMonitor::reads_apart(const RegressorState& reading,
+                                    const RegressorState& belief) const {
+  const bool outside = belief.mass_kg < reading.ci_low_kg || belief.mass_kg > reading.ci_high_kg;
   return outside &&
-         std::abs(challenger.mass_kg - main.mass_kg) > params_.min_change_fraction * empty_mass_kg_;
+         std::abs(reading.mass_kg - belief.mass_kg) > params_.min_change_fraction * empty_mass_kg_;
 }
 
 }  // namespace vmass

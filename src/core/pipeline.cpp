@@ -188,7 +188,7 @@ void Pipeline::reset_extractors(double reference_mass_kg) {
 
 void Pipeline::restart(const MassPrior& prior, StatusReason reason) {
   end_known_mass();
-  segment_revertible_ = false;
+  before_stop_saved_ = false;
   interlude_pending_ = false;
   end_static_anchor();
   end_gear_evidence();
@@ -322,7 +322,7 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
     term_sums_before_stop_ = term_sums_;
     rls_before_stop_ = rls_;
     bayes_before_stop_ = bayes_;
-    segment_revertible_ = true;
+    before_stop_saved_ = true;
     // The challenger's extractor starts as on a fresh drive, at the challenger's prior: its lag,
     // noise and reference mass of the load before would misread today's.
     monitor_longitudinal_.forget_load();
@@ -353,7 +353,7 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
 // unloaded at this stop. A suspicion a change does not explain better (a belief of few pairs
 // against a sure drive, a part of a drive in other gears) is the same load: it is not held.
 bool Pipeline::ended_drive_read_another_load() const {
-  return segment_revertible_ && load_monitor_.ended_in_suspicion(belief_before_stop_) &&
+  return before_stop_saved_ && load_monitor_.ended_in_suspicion(belief_before_stop_) &&
          probability_load_changed(load_monitor_.ended()) > 0.5;
 }
 
@@ -401,7 +401,7 @@ bool Pipeline::judge_interlude() {
 
 void Pipeline::adopt_challenger() {
   end_known_mass();  // the load changed: the known mass no longer holds
-  segment_revertible_ = false;
+  before_stop_saved_ = false;
   interlude_pending_ = false;
   // The load before the stop is the belief's evidence of the gears; the new load's pairs go on.
   if (belief_before_stop_.pairs_used > 0) {
@@ -683,7 +683,7 @@ bool Pipeline::restore(const PipelineSnapshot& s) {
                                    s.reference_grade_accel_mps2);
   }
   if (!carries_load) load_monitor_.assume_long_stop();
-  segment_revertible_ = false;  // the belief before the last stop was not saved
+  before_stop_saved_ = false;  // the belief before the last stop was not saved
   interlude_pending_ = false;
   has_reference_ = s.has_reference;
   reference_deflection_m_ = s.reference_deflection_m;

@@ -20,8 +20,8 @@
 // restarts the challenger; when nothing changed it simply agrees with the main belief and is
 // dropped at the next stop. What the challenger a restart ends had read is kept (ended(),
 // ended_in_suspicion()): a drive between two stops that still excluded the main belief when it
-// ended, undecided, may have read another load (the pipeline then weighs whether to leave that
-// drive out of the main belief).
+// ended, undecided, may have read another load (the pipeline then holds it until a later drive
+// tells whether that load is gone).
 //
 // Pure: time comes from the samples. Not thread-safe; allocates nothing after construction.
 #pragma once

@@ -361,11 +361,11 @@ class Pipeline {
   bool term_fit_applies_ = false;
   PairTermFit term_fit_;
   RegressorState belief_before_stop_;  ///< the belief when the load monitor's challenger started
-  /// The regressor then (the kind in use), to drop an undecided drive from the belief; valid
-  /// while segment_revertible_.
+  /// The regressor then (the kind in use): what a held drive's belief would return to; valid
+  /// while before_stop_saved_ (not after a restore or an adoption).
   RlsEstimator rls_before_stop_;
   BayesEstimator bayes_before_stop_;
-  bool segment_revertible_ = false;
+  bool before_stop_saved_ = false;
   /// A drive held while a later one tells whether its load is gone (hold_interlude): the
   /// belief without it, that belief's state and what the held drive read.
   bool interlude_pending_ = false;
