@@ -320,8 +320,7 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
     belief_before_stop_ = regressor_->state();
     sums_before_stop_ = load_sums_;
     term_sums_before_stop_ = term_sums_;
-    rls_before_stop_ = rls_;
-    bayes_before_stop_ = bayes_;
+    save_regressor(&rls_before_stop_, &bayes_before_stop_);
     before_stop_saved_ = true;
     // The challenger's extractor starts as on a fresh drive, at the challenger's prior: its lag,
     // noise and reference mass of the load before would misread today's.
@@ -357,6 +356,15 @@ bool Pipeline::ended_drive_read_another_load() const {
          probability_load_changed(load_monitor_.ended()) > 0.5;
 }
 
+// Only the kind in use: the other is never read.
+void Pipeline::save_regressor(RlsEstimator* rls, BayesEstimator* bayes) const {
+  if (params_.estimator.type == RegressorType::kRls) {
+    *rls = rls_;
+  } else {
+    *bayes = bayes_;
+  }
+}
+
 // Mixed in, two loads make a mass of neither, with a spread so wide that no later challenger can
 // contradict it (a tractor's coupled stretch, 20.9 +- 3.3 t on 500 pairs against 10.4 +- 1.0 t
 // solo, left the solo belief at +104 % after the uncoupling; docs/estimator.md). But at this
@@ -365,8 +373,11 @@ bool Pipeline::ended_drive_read_another_load() const {
 // kept until a later drive tells.
 void Pipeline::hold_interlude() {
   interlude_pending_ = true;
-  rls_without_interlude_ = rls_before_stop_;
-  bayes_without_interlude_ = bayes_before_stop_;
+  if (params_.estimator.type == RegressorType::kRls) {
+    rls_without_interlude_ = rls_before_stop_;
+  } else {
+    bayes_without_interlude_ = bayes_before_stop_;
+  }
   sums_without_interlude_ = sums_before_stop_;
   term_sums_without_interlude_ = term_sums_before_stop_;
   belief_without_interlude_ = belief_before_stop_;

@@ -293,6 +293,8 @@ class Pipeline {
   bool ended_drive_read_another_load() const;
   /// Keeps the belief without that drive, until a later drive tells whether its load is gone.
   void hold_interlude();
+  /// Copies the regressor in use into its kind's slot.
+  void save_regressor(RlsEstimator* rls, BayesEstimator* bayes) const;
   /// At a later stop: the belief without the held drive again, if the load went back.
   bool judge_interlude();
   /// Offer the tick's extractions to the supervisor.
