@@ -41,6 +41,13 @@ std::string located(const std::string& invalid, const YAML::Node& root, const st
   return out;
 }
 
+/// can.inputs maps a wheel torque: the torque input, whatever ratios the vehicle gives.
+bool maps_wheel_torque(const YAML::Node& can) {
+  if (!can.IsMap()) return false;
+  const YAML::Node inputs = can["inputs"];
+  return inputs.IsMap() && inputs["wheel_torque"].IsDefined();
+}
+
 ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::string& directory) {
   ConfigLoad out;
   try {
@@ -58,6 +65,7 @@ ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::str
     read_suspension_section(top.child("suspension"), has_suspension, &c.pipeline.suspension);
     read_estimator_section(top.child("estimator"), &c.pipeline.estimator);
     c.can = top.raw("can");
+    c.pipeline.vehicle.wheel_torque_input = maps_wheel_torque(c.can);
     c.lcm = top.raw("lcm");
     c.daemon = top.raw("daemon");
     top.reject_unknown_keys();

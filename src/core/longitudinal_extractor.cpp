@@ -27,7 +27,9 @@ constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
 InputMask torque_inputs(const VehicleParams& v) {
   if (v.derive_overall_ratio)
     return input_bit(Input::kEngineTorque) | input_bit(Input::kEngineSpeed);
-  if (v.knows_driveline()) return input_bit(Input::kEngineTorque) | input_bit(Input::kGear);
+  if (v.knows_driveline() && !v.wheel_torque_input) {
+    return input_bit(Input::kEngineTorque) | input_bit(Input::kGear);
+  }
   return input_bit(Input::kWheelTorque);
 }
 }  // namespace
@@ -176,8 +178,8 @@ double LongitudinalExtractor::wheel_torque_nm(const Sample& s) const {
 ConverterReading LongitudinalExtractor::coupling(const Sample& s) {
   ConverterReading locked;
   locked.coupling = DrivelineCoupling::kLocked;
-  if (s.has(Input::kWheelTorque) || !s.has(Input::kEngineSpeed) || !s.has(Input::kGear)) {
-    return locked;  // nothing to check it by (a wheel torque holds the converter already)
+  if (!vehicle_.knows_driveline() || !s.has(Input::kEngineSpeed) || !s.has(Input::kGear)) {
+    return locked;  // nothing to check it by
   }
   const double through_gear_radps =
       std::abs(s.speed_mps) / vehicle_.wheel_radius_m * vehicle_.overall_ratio(s.gear);
@@ -187,10 +189,10 @@ ConverterReading LongitudinalExtractor::coupling(const Sample& s) {
   return converter_.read(s.engine_speed_radps, through_gear_radps * speed_scale_.scale());
 }
 
-// Only an automatic read through its map: a wheel torque or a clutch gearbox's engine report
-// shows the shift's dip, and the plain settle suffices there.
+// Only an automatic's engine torque read through its map: a wheel torque or a clutch gearbox's
+// engine report shows the shift's dip, and the plain settle suffices there.
 bool LongitudinalExtractor::hidden_shift_in_window() const {
-  return vehicle_.knows_converter_map() && !derive_ratio_ &&
+  return vehicle_.knows_converter_map() && !derive_ratio_ && !vehicle_.wheel_torque_input &&
          ticks_since_shift_ < window_ticks_ + converter_shift_settle_ticks_;
 }
 
@@ -221,9 +223,13 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   if (derive_ratio_) ratio_tracker_.step(s.engine_speed_radps, s.speed_mps);
   const double r = vehicle_.wheel_radius_m;
   const ConverterReading converter = derive_ratio_ ? ConverterReading{} : coupling(s);
-  const double engine_path_force = wheel_torque_nm(s) / r;
   const bool multiplied = converter.coupling == DrivelineCoupling::kConverter;
-  double force = multiplied ? engine_path_force * converter.torque_ratio : engine_path_force;
+  // A wheel torque holds the converter's multiplication already, by the TCU's model of it (the
+  // map's, with the map's error); an engine torque gets it from the map here.
+  const bool after_converter = s.has(Input::kWheelTorque);
+  const double torque_force = wheel_torque_nm(s) / r;
+  double force =
+      multiplied && !after_converter ? torque_force * converter.torque_ratio : torque_force;
   const double force_n_reported = force;
   const bool brakes = braking(s);
   // The brake force is subtracted wherever the pressure is known: below the "applied" level it
@@ -235,10 +241,13 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
              std::abs(s.speed_mps);
   }
   if (!physically_possible(force, s)) return false;
-  const bool gear_ok = derive_ratio_
-                           ? ratio_locked_on_plateau()
-                           : (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) &&
-                                 converter.coupling != DrivelineCoupling::kSlipping;
+  // A wheel torque is its ECU's reading whatever the clutch or converter does, as it was before
+  // the engine speed was read; an engine torque does not reach the wheels through a slip.
+  const bool driveline_ok = after_converter || converter.coupling != DrivelineCoupling::kSlipping;
+  const bool gear_ok =
+      derive_ratio_
+          ? ratio_locked_on_plateau()
+          : (!s.has(Input::kGear) || (s.gear > 0 && s.gear == previous_gear_)) && driveline_ok;
   const bool shifted = s.has(Input::kGear) && s.gear != previous_gear_;
   ticks_since_shift_ = shifted ? 0 : ticks_since_shift_ + 1;
   previous_gear_ = gear_identity(s);
@@ -249,7 +258,10 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   const int mode_gear = s.has(Input::kGear) || derive_ratio_ ? previous_gear_ : 1;
   mode_.observe(force_n_reported, s.accel_x_mps2, mode_gear, clean);
   in->force_n = force - force_n_reported + mode_.hub_force_n(force_n_reported, mode_gear);
-  in->converter_force_n = multiplied ? engine_path_force * (converter.torque_ratio - 1.0) : 0.0;
+  // The multiplication's part of the force: the engine's times TR - 1.
+  const double engine_force =
+      after_converter ? torque_force / converter.torque_ratio : torque_force;
+  in->converter_force_n = multiplied ? engine_force * (converter.torque_ratio - 1.0) : 0.0;
   in->converter_multiplying = multiplied && converter.torque_ratio > 1.0;
   in->clean = clean;
   return true;

@@ -65,7 +65,11 @@ VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k)
   const bool declared = k == Knowledge::kDatasheetScale;
   p.wheel_torque_accuracy_fraction = declared ? e.declared_torque_accuracy : 0.0;
   p.wheel_radius_accuracy_fraction = declared ? e.declared_radius_accuracy : 0.0;
-  if (d.sensors.torque == TorqueSignal::kEngineTorque) {
+  // The gearbox's datasheet: for the engine torque's path, and for a wheel torque beside the
+  // engine speed and the gear, to tell a slipping converter or clutch.
+  const bool gearbox = d.sensors.torque == TorqueSignal::kEngineTorque ||
+                       (bus_has_engine_speed(d) && d.sensors.gear_index);
+  if (gearbox) {
     p.gear_ratios = v.powertrain.gear_ratios;
     p.final_drive_ratio = v.powertrain.final_drive_ratio;
     p.driveline_efficiency = v.powertrain.efficiency;

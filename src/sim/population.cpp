@@ -371,6 +371,11 @@ bool parse_vehicle_id(const std::string& id, DrawnVehicle* out, std::string* err
   return true;
 }
 
+bool bus_has_engine_speed(const DrawnVehicle& v) {
+  return v.sensors.torque == TorqueSignal::kEngineTorque ||
+         (v.vehicle_class == VehicleClass::kHeavyTruck && !v.electric);
+}
+
 std::string describe_vehicle(const DrawnVehicle& d) {
   const TrueVehicle& v = d.vehicle;
   char buf[512];
@@ -399,7 +404,8 @@ std::string population_rules_text() {
          "brake gain for 1 g at GVW; conventions: Motorola 50 %, 29-bit 20 %, a in g 25 %, "
          "yaw in rad/s 20 %, yaw positive right 25 %, steering positive right 25 %, pressure "
          "in kPa 30 %, muxed level 30 %; per-axle torque "
-         "70 % of electric AWD; knowledge errors C_alpha +-20 %, K_brake +-10 %, m_rot "
+         "70 % of electric AWD; engine speed on every combustion truck's bus; knowledge errors "
+         "C_alpha +-20 %, K_brake +-10 %, m_rot "
          "+-30 %, c +-5 %, CdA +-10 %, f0 +-25 %, l_f +-1 % l; datasheet scale: torque +-5 %, "
          "radius +-2 %\n";
 }

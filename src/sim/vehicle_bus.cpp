@@ -103,6 +103,7 @@ class MessageLayout {
       : c_(v.can),
         s_(v.sensors),
         truck_(v.vehicle_class == VehicleClass::kHeavyTruck),
+        engine_speed_(bus_has_engine_speed(v)),
         rng_(v.seed * 16 + static_cast<std::uint64_t>(v.vehicle_class), hash_name("bus.layout")),
         next_id_(v.can.id_base) {}
 
@@ -150,6 +151,10 @@ class MessageLayout {
     } else {
       pt.signals.push_back(make(Source::kWheelTorque, "WheelTorque", 0, 16, true, tq, 0.0, "Nm",
                                 1.0, "wheel_torque"));
+      if (engine_speed_) {
+        pt.signals.push_back(make(Source::kEngineSpeed, "EngineSpeed", 2, 16, false, 0.25, 0.0,
+                                  "rpm", 2.0 * kPi / 60.0, "engine_speed"));
+      }
     }
     if (s_.gear_index) {
       pt.signals.push_back(
@@ -258,6 +263,7 @@ class MessageLayout {
   const CanConventions& c_;
   const VehicleSensors& s_;
   bool truck_;
+  bool engine_speed_;  ///< bus_has_engine_speed
   RandomStream rng_;
   std::uint32_t next_id_;
 };

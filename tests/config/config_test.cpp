@@ -256,6 +256,21 @@ TEST(ConfigManyHands, AConverterMapNeedsItsCouplingPoint) {
   EXPECT_TRUE(load_config_text(text, "c.yaml").ok());
 }
 
+TEST(ConfigManyHands, AMappedWheelTorqueIsTheTorqueWhateverRatiosAreGiven) {
+  // An automatic's gearbox datasheet beside a wheel torque: the ratios tell a slipping
+  // converter from the engine speed, and the torque stays the wheels'.
+  std::string text = kMinimal;
+  text.insert(text.find("suspension:"),
+              "  gear_ratios: [3.5, 2.0, 1.4]\n  final_drive_ratio: 4.0\n");
+  const ConfigLoad engine = load_config_text(text, "e.yaml");
+  ASSERT_TRUE(engine.ok()) << engine.error;
+  EXPECT_FALSE(engine.config->pipeline.vehicle.wheel_torque_input);
+  text += "can:\n  dbc: car.dbc\n  inputs:\n    wheel_torque: PT.WheelTorque\n";
+  const ConfigLoad wheels = load_config_text(text, "w.yaml");
+  ASSERT_TRUE(wheels.ok()) << wheels.error;
+  EXPECT_TRUE(wheels.config->pipeline.vehicle.wheel_torque_input);
+}
+
 TEST(ConfigManyHands, SpecialFilesAreRefusedWithTheirKind) {
   EXPECT_EQ(load_config("/dev/zero").error,
             "/dev/zero: cannot read the config: is a character device");

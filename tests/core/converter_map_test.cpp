@@ -116,6 +116,68 @@ Estimate after_drive_through_converter(double map_accuracy, double true_stall, b
   return pipeline.estimate();
 }
 
+// The same drive as an automatic's gearbox controller reports it with a wheel torque: the
+// multiplication by its own model of the converter (the map) in the torque, and, with
+// `engine_speed`, the engine speed and the gear beside it (a truck's EEC1 and ETC2).
+std::vector<Sample> wheel_torque_through_tcu(std::vector<Sample> samples, const VehicleParams& v,
+                                             double true_stall, bool engine_speed) {
+  for (Sample& s : samples) {
+    const double speed_ratio = 0.625 + 0.175 * std::sin(0.23 * to_seconds(s.time_us));
+    s.set(Input::kWheelTorque, s.wheel_torque_nm * true_torque_ratio(speed_ratio, kStall) /
+                                   true_torque_ratio(speed_ratio, true_stall));
+    s.set(Input::kGear, 2.0);
+    if (engine_speed) {
+      s.set(Input::kEngineSpeed,
+            s.speed_mps / v.wheel_radius_m * kGearRatio * kFinalDrive / speed_ratio);
+    }
+  }
+  return samples;
+}
+
+// A pipeline on that bus, the pair terms fitted.
+Estimate after_tcu_drive(bool engine_speed, std::optional<PairTermFit>* fit) {
+  PipelineParams p;
+  p.vehicle = automatic_vehicle();
+  p.vehicle.wheel_torque_input = true;
+  p.suspension = testing::test_suspension();
+  p.vehicle.wheel_torque_accuracy_fraction = 0.0;
+  p.vehicle.wheel_radius_accuracy_fraction = 0.0;
+  p.vehicle.pitch_gradient_std_deg_per_g = 0.0;
+  testing::LongitudinalDrive drive;
+  drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
+  Pipeline pipeline(p);
+  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
+  std::vector<Sample> samples = testing::standstill_samples(0.0, 4.0, z);
+  const auto moving =
+      wheel_torque_through_tcu(testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z),
+                               p.vehicle, 1.0 + 1.2 * (kStall - 1.0), engine_speed);
+  samples.insert(samples.end(), moving.begin(), moving.end());
+  for (const Sample& s : samples) pipeline.step(s);
+  pipeline.flush();
+  *fit = pipeline.pair_term_fit();
+  return pipeline.estimate();
+}
+
+TEST(ConverterMap, AWheelTorqueBesideTheEngineSpeedShowsTheConvertersShare) {
+  // The TCU's map multiplies 20 % less than the converter: its wheel torque under-reads the
+  // force as an engine torque read through that map would. With the engine speed the pairs
+  // carry the map's share and the fit takes its error off the mass; without it nothing on the
+  // bus says the converter is unlocked.
+  const double truth = testing::LongitudinalDrive{}.mass_kg;
+  std::optional<PairTermFit> fit, blind_fit;
+  const Estimate read = after_tcu_drive(true, &fit);
+  const Estimate blind = after_tcu_drive(false, &blind_fit);
+  ASSERT_TRUE(fit.has_value());
+  EXPECT_TRUE(fit->converter_multiplied);
+  EXPECT_NEAR(fit->converter_error, -0.2, 2.0 * fit->converter_error_std) << fit->converter_error;
+  EXPECT_NEAR(read.mass_kg, truth, 0.01 * truth);
+  EXPECT_LE(read.ci_low_kg, truth);
+  EXPECT_GE(read.ci_high_kg, truth);
+  ASSERT_TRUE(blind_fit.has_value());
+  EXPECT_FALSE(blind_fit->converter_multiplied);
+  EXPECT_LT(blind.mass_kg, 0.98 * truth);
+}
+
 TEST(ConverterMap, TheIntervalHoldsTheMapsErrorTimesItsShare) {
   // The real converter's TR - 1 is 20 % above the map's: the force is under-read by up to
   // 10 % where the converter multiplies most, in every pair alike.

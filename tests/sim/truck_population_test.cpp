@@ -7,9 +7,11 @@
 #include <string>
 
 #include "sim_test_util.hpp"
+#include "vmass/sim/datasheet_config.hpp"
 #include "vmass/sim/population.hpp"
 #include "vmass/sim/population_scenarios.hpp"
 #include "vmass/sim/truck_population.hpp"
+#include "vmass/sim/vehicle_bus.hpp"
 
 namespace vmass::sim {
 namespace {
@@ -41,6 +43,31 @@ TEST(SimTruckPopulation, TractorsAreHeavyTrucksWithACombinationLimitAndParseBack
   std::string error;
   EXPECT_FALSE(parse_vehicle_id("tractor-x1", &parsed, &error));
   EXPECT_NE(error.find("seed"), std::string::npos);
+}
+
+// J1939's EEC1 carries the engine speed on every truck, whatever its torque signal; with a gear
+// number on the bus the engineer has the gearbox's datasheet too (its ratios and converter map),
+// which tell a slipping converter from the engine speed.
+TEST(SimTruckPopulation, EveryTractorsBusCarriesTheEngineSpeed) {
+  int wheel_torque_automatics = 0;
+  for (const DrawnVehicle& t : draw_truck_population(40, kTruckFirstSeed)) {
+    ASSERT_TRUE(bus_has_engine_speed(t)) << t.id;
+    const std::string can = VehicleBus(t).can_config_yaml("v.dbc");
+    EXPECT_NE(can.find("engine_speed:"), std::string::npos) << t.id;
+    if (t.sensors.torque != TorqueSignal::kWheelTorque || !t.sensors.gear_index) continue;
+    const std::string config =
+        datasheet_config_yaml(t, Realism::all(), Knowledge::kKnownScale, "v.dbc");
+    EXPECT_NE(config.find("gear_ratios:"), std::string::npos) << t.id;
+    if (!t.vehicle.powertrain.has_torque_converter()) continue;
+    ++wheel_torque_automatics;
+    EXPECT_NE(config.find("torque_converter_stall_torque_ratio:"), std::string::npos) << t.id;
+  }
+  EXPECT_GT(wheel_torque_automatics, 0);
+  // A car keeps the bus it was drawn with.
+  for (const DrawnVehicle& d : draw_population(14, 1)) {
+    if (d.vehicle_class == VehicleClass::kHeavyTruck) continue;
+    EXPECT_EQ(bus_has_engine_speed(d), d.sensors.torque == TorqueSignal::kEngineTorque) << d.id;
+  }
 }
 
 TEST(SimTruckPopulation, TruckDrivesAreNotInTheCarSuite) {

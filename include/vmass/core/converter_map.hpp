@@ -1,6 +1,7 @@
 // ConverterMap: the engine torque through an unlocked torque converter, for a car whose bus has
-// engine torque, engine speed and the gear number (an automatic's first gears, a truck pulling
-// away), and whose config gives the converter's map (vehicle.torque_converter_*).
+// engine torque (or a wheel torque that holds the multiplication by the gearbox controller's
+// model of it), engine speed and the gear number (an automatic's first gears, a truck pulling
+// away), and whose config gives the ratios and the converter's map (vehicle.torque_converter_*).
 //
 //   SR = w_turbine / w_engine,    w_turbine = |v| / r i(gear)      the speed ratio
 //   TR = stall - (stall - 1) SR / SR_c    for SR < SR_c;  1 at and above the coupling point

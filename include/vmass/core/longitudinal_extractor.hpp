@@ -32,7 +32,10 @@
 //     vehicle.derive_overall_ratio: the ratio locked on one confirmed plateau of
 //     OverallRatioTracker), a driveline that is locked or, with the converter's map
 //     configured, driving through an unlocked converter (ConverterMap: the engine torque times
-//     its torque ratio), speed above min_speed_mps, |a_y| small;
+//     its torque ratio), speed above min_speed_mps, |a_y| small. A wheel torque beside the
+//     engine speed, the gear and the ratios is read the same way for the converter's share of
+//     it (the gearbox controller's own model of the multiplication is in that torque, with the
+//     map's error), and is used through a slip as without them;
 //   - an outlier gate that cannot lock in: the mass the pair implies, y / da, must lie in the
 //     plausible band [0.5 empty, 1.5 maximum permissible] (2.5 empty without a maximum).
 // Without a brake-pressure signal the brake-light switch decides; with neither, the block needs
@@ -151,11 +154,12 @@ class LongitudinalExtractor {
   /// The same in acceleration, force_noise_n() / M_ref, m/s^2.
   double accel_noise_mps2() const { return force_noise_n() / reference_mass_kg_; }
 
-  /// Inputs this block needs: a_x, speed and the wheel torque, or, on a car whose driveline
-  /// ratios are configured, the engine torque and the gear (the engine speed, when present,
-  /// detects a slipping converter or clutch), or, with vehicle.derive_overall_ratio, the engine
-  /// torque and the engine speed (the ratio derived from them, OverallRatioTracker). Brake
-  /// pressure or the brake switch decide the brake state when present.
+  /// Inputs this block needs: a_x, speed and the wheel torque (vehicle.wheel_torque_input), or,
+  /// on a car whose driveline ratios are configured, the engine torque and the gear (the engine
+  /// speed, when present, detects a slipping converter or clutch), or, with
+  /// vehicle.derive_overall_ratio, the engine torque and the engine speed (the ratio derived from
+  /// them, OverallRatioTracker). Brake pressure or the brake switch decide the brake state when
+  /// present.
   InputMask required_inputs() const { return required_; }
 
  private:
