@@ -66,7 +66,7 @@ VehicleParams datasheet_vehicle(const DrawnVehicle& d, bool errors, Knowledge k)
   p.wheel_torque_accuracy_fraction = declared ? e.declared_torque_accuracy : 0.0;
   p.wheel_radius_accuracy_fraction = declared ? e.declared_radius_accuracy : 0.0;
   // The gearbox's datasheet: for the engine torque's path, and for a wheel torque beside the
-  // engine speed and the gear, to tell a slipping converter or clutch.
+  // engine speed and the gear, to read an automatic's converter.
   const bool gearbox = d.sensors.torque == TorqueSignal::kEngineTorque ||
                        (bus_has_engine_speed(d) && d.sensors.gear_index);
   if (gearbox) {

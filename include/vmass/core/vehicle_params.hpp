@@ -56,9 +56,9 @@ struct VehicleParams {
   /// The driveline, for a car that reports engine torque only (not wheel torque):
   ///   C_wheel = T_engine i_gear i_final eta    (T_engine / eta when the engine is dragged)
   /// Empty gear_ratios or final_drive_ratio 0: unknown (wheel torque is then required).
-  /// With a wheel torque on the bus (wheel_torque_input) the ratios only tell, from the engine
-  /// speed, whether the converter or clutch slips (an automatic's TCU reports a wheel torque
-  /// through its own model of the converter: LongitudinalExtractor).
+  /// With a wheel torque on the bus (wheel_torque_input) the ratios only read an automatic's
+  /// converter from the engine speed (its TCU reports a wheel torque through its own model of
+  /// the converter: LongitudinalExtractor).
   std::vector<double> gear_ratios;  ///< index gear - 1
   double final_drive_ratio = 0.0;
   /// The bus's wheel torque is the torque input (can.inputs maps wheel_torque): set by the
@@ -80,12 +80,12 @@ struct VehicleParams {
   /// gear's, so only ratios seen above any lock-up speed count as locked: the derived ratio's
   /// plateaus, and the speed signal's scale against the engine (SpeedSignalScale).
   bool torque_converter = true;
-  /// The converter's map, for engine torque or wheel torque with a gear number and the engine
-  /// speed (ConverterMap): the torque
-  /// ratio TR = stall - (stall - 1) SR / coupling below the coupling point, 1 above it, of the
-  /// speed ratio SR = turbine speed / engine speed. With it an unlocked converter's ticks are
-  /// used (a truck's automatic pulls away and drives its first gears unlocked); stall 0: the
-  /// map is unknown and they are not clean, as any slipping driveline's.
+  /// The converter's map, for an engine torque or a wheel torque with the gear number and the
+  /// engine speed (ConverterMap): the torque ratio TR = stall - (stall - 1) SR / coupling below
+  /// the coupling point, 1 above it, of the speed ratio SR = turbine speed / engine speed. With it
+  /// an unlocked converter's ticks are used (a truck's automatic pulls away and drives its first
+  /// gears unlocked); stall 0: the map is unknown and an engine torque's ticks there are not
+  /// clean, as any slipping driveline's.
   double torque_converter_stall_torque_ratio = 0.0;
   double torque_converter_coupling_speed_ratio = 0.0;
   /// Bound of the map's relative error in TR - 1 (a maker's curve against the converter in the

@@ -115,10 +115,10 @@ DrawnVehicle draw_vehicle(VehicleClass vehicle_class, std::uint64_t vehicle_seed
 std::vector<DrawnVehicle> draw_population(int count, std::uint64_t first_seed);
 /// Parses "<class>-<seed>" (the id) into a vehicle. Empty error on success.
 bool parse_vehicle_id(const std::string& id, DrawnVehicle* out, std::string* error);
-/// One line describing the vehicle (class, mass, powertrain, sensors), for logs and tables.
 /// The engine speed is on the bus: beside an engine torque, and on every combustion heavy truck
 /// whatever its torque signal (J1939's EEC1 carries it on every truck).
 bool bus_has_engine_speed(const DrawnVehicle& v);
+/// One line describing the vehicle (class, mass, powertrain, sensors), for logs and tables.
 std::string describe_vehicle(const DrawnVehicle& v);
 /// The draw rules that are code, not ranges (gear sets, probabilities of conventions, the
 /// knowledge errors): part of the population's definition and its hash.
