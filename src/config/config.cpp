@@ -43,9 +43,10 @@ std::string located(const std::string& invalid, const YAML::Node& root, const st
 
 /// can.inputs maps a wheel torque: the torque input, whatever ratios the vehicle gives.
 bool maps_wheel_torque(const YAML::Node& can) {
-  if (!can.IsMap()) return false;
+  if (!can.IsDefined() || !can.IsMap()) return false;
+  // Const access: a missing key reads as undefined and is not inserted.
   const YAML::Node inputs = can["inputs"];
-  return inputs.IsMap() && inputs["wheel_torque"].IsDefined();
+  return inputs.IsDefined() && inputs.IsMap() && inputs["wheel_torque"].IsDefined();
 }
 
 ConfigLoad parse(const YAML::Node& root, const std::string& file, const std::string& directory) {
