@@ -259,9 +259,11 @@ bool LongitudinalExtractor::read(const Sample& s, TickInputs* in) {
   mode_.observe(force_n_reported, s.accel_x_mps2, mode_gear, clean);
   in->force_n = force - force_n_reported + mode_.hub_force_n(force_n_reported, mode_gear);
   // The multiplication's part of the force: the engine's times TR - 1.
-  const double engine_force =
-      after_converter ? torque_force / converter.torque_ratio : torque_force;
-  in->converter_force_n = multiplied ? engine_force * (converter.torque_ratio - 1.0) : 0.0;
+  in->converter_force_n = 0.0;
+  if (multiplied) {
+    const double tr = converter.torque_ratio;
+    in->converter_force_n = (after_converter ? torque_force / tr : torque_force) * (tr - 1.0);
+  }
   in->converter_multiplying = multiplied && converter.torque_ratio > 1.0;
   in->clean = clean;
   return true;

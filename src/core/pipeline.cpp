@@ -320,7 +320,7 @@ void Pipeline::offer_monitor_pairs(const Sample& sample) {
     belief_before_stop_ = regressor_->state();
     sums_before_stop_ = load_sums_;
     term_sums_before_stop_ = term_sums_;
-    save_regressor(&rls_before_stop_, &bayes_before_stop_);
+    copy_regressor(rls_, bayes_, &rls_before_stop_, &bayes_before_stop_);
     before_stop_saved_ = true;
     // The challenger's extractor starts as on a fresh drive, at the challenger's prior: its lag,
     // noise and reference mass of the load before would misread today's.
@@ -357,11 +357,12 @@ bool Pipeline::ended_drive_read_another_load() const {
 }
 
 // Only the kind in use: the other is never read.
-void Pipeline::save_regressor(RlsEstimator* rls, BayesEstimator* bayes) const {
+void Pipeline::copy_regressor(const RlsEstimator& rls, const BayesEstimator& bayes,
+                              RlsEstimator* rls_to, BayesEstimator* bayes_to) const {
   if (params_.estimator.type == RegressorType::kRls) {
-    *rls = rls_;
+    *rls_to = rls;
   } else {
-    *bayes = bayes_;
+    *bayes_to = bayes;
   }
 }
 
@@ -373,11 +374,8 @@ void Pipeline::save_regressor(RlsEstimator* rls, BayesEstimator* bayes) const {
 // kept until a later drive tells.
 void Pipeline::hold_interlude() {
   interlude_pending_ = true;
-  if (params_.estimator.type == RegressorType::kRls) {
-    rls_without_interlude_ = rls_before_stop_;
-  } else {
-    bayes_without_interlude_ = bayes_before_stop_;
-  }
+  copy_regressor(rls_before_stop_, bayes_before_stop_, &rls_without_interlude_,
+                 &bayes_without_interlude_);
   sums_without_interlude_ = sums_before_stop_;
   term_sums_without_interlude_ = term_sums_before_stop_;
   belief_without_interlude_ = belief_before_stop_;
@@ -397,11 +395,7 @@ bool Pipeline::judge_interlude() {
   if (reads_before && reads_interlude) return false;
   interlude_pending_ = false;
   if (!reads_before) return false;
-  if (params_.estimator.type == RegressorType::kRls) {
-    rls_ = rls_without_interlude_;
-  } else {
-    bayes_ = bayes_without_interlude_;
-  }
+  copy_regressor(rls_without_interlude_, bayes_without_interlude_, &rls_, &bayes_);
   load_sums_ = sums_without_interlude_;
   term_sums_ = term_sums_without_interlude_;
   refit_terms();
@@ -424,11 +418,7 @@ void Pipeline::adopt_challenger() {
   term_sums_ = term_sums_.since(term_sums_before_stop_);
   term_sums_before_stop_ = PairTermSums{};
   refit_terms();
-  if (params_.estimator.type == RegressorType::kRls) {
-    rls_ = load_monitor_.challenger_rls();
-  } else {
-    bayes_ = load_monitor_.challenger_bayes();
-  }
+  copy_regressor(load_monitor_.challenger_rls(), load_monitor_.challenger_bayes(), &rls_, &bayes_);
   load_monitor_.dismiss();
   decide_term_fit();
   has_plausible_ = false;

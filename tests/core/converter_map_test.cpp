@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -91,9 +93,8 @@ TEST(ConverterMap, UnlockedTheEngineTorqueThroughTheMapGivesTheMass) {
   EXPECT_TRUE(longitudinal_pairs(bus, no_map).empty());
 }
 
-// A pipeline on the automatic's bus whose real converter multiplies more than its map says.
-Estimate after_drive_through_converter(double map_accuracy, double true_stall, bool fit_terms,
-                                       std::optional<PairTermFit>* fit = nullptr) {
+// The automatic's config, exact but for its converter map (declared to map_accuracy).
+PipelineParams automatic_params(double map_accuracy, bool fit_terms) {
   PipelineParams p;
   p.estimator.fit_pair_terms = fit_terms;
   p.vehicle = automatic_vehicle();
@@ -102,18 +103,35 @@ Estimate after_drive_through_converter(double map_accuracy, double true_stall, b
   p.vehicle.wheel_radius_accuracy_fraction = 0.0;
   p.vehicle.pitch_gradient_std_deg_per_g = 0.0;
   p.vehicle.torque_converter_map_accuracy_fraction = map_accuracy;
+  return p;
+}
+
+// A pipeline on the drive (a stop, then 300 s of driving) as `bus` reports it.
+template <typename Bus>
+Estimate after_drive(const PipelineParams& p, Bus bus, std::optional<PairTermFit>* fit) {
   testing::LongitudinalDrive drive;
   drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
   Pipeline pipeline(p);
   const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
   std::vector<Sample> samples = testing::standstill_samples(0.0, 4.0, z);
-  const auto moving = through_unlocked_converter(
-      testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z), p.vehicle, true_stall);
+  const auto moving = bus(testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z));
   samples.insert(samples.end(), moving.begin(), moving.end());
   for (const Sample& s : samples) pipeline.step(s);
   pipeline.flush();
   if (fit != nullptr) *fit = pipeline.pair_term_fit();
   return pipeline.estimate();
+}
+
+// A pipeline on the automatic's bus whose real converter multiplies more than its map says.
+Estimate after_drive_through_converter(double map_accuracy, double true_stall, bool fit_terms,
+                                       std::optional<PairTermFit>* fit = nullptr) {
+  const PipelineParams p = automatic_params(map_accuracy, fit_terms);
+  return after_drive(
+      p,
+      [&](std::vector<Sample> s) {
+        return through_unlocked_converter(std::move(s), p.vehicle, true_stall);
+      },
+      fit);
 }
 
 // The same drive as an automatic's gearbox controller reports it with a wheel torque: the
@@ -136,26 +154,15 @@ std::vector<Sample> wheel_torque_through_tcu(std::vector<Sample> samples, const 
 
 // A pipeline on that bus, the pair terms fitted.
 Estimate after_tcu_drive(bool engine_speed, std::optional<PairTermFit>* fit) {
-  PipelineParams p;
-  p.vehicle = automatic_vehicle();
+  PipelineParams p = automatic_params(0.25, true);
   p.vehicle.wheel_torque_input = true;
-  p.suspension = testing::test_suspension();
-  p.vehicle.wheel_torque_accuracy_fraction = 0.0;
-  p.vehicle.wheel_radius_accuracy_fraction = 0.0;
-  p.vehicle.pitch_gradient_std_deg_per_g = 0.0;
-  testing::LongitudinalDrive drive;
-  drive.rotating_mass_kg = p.vehicle.rotating_mass_kg;
-  Pipeline pipeline(p);
-  const double z = testing::deflection_for(drive.mass_kg, p.vehicle, p.suspension);
-  std::vector<Sample> samples = testing::standstill_samples(0.0, 4.0, z);
-  const auto moving =
-      wheel_torque_through_tcu(testing::longitudinal_samples(drive, p.vehicle, 4.0, 300.0, 15.0, z),
-                               p.vehicle, 1.0 + 1.2 * (kStall - 1.0), engine_speed);
-  samples.insert(samples.end(), moving.begin(), moving.end());
-  for (const Sample& s : samples) pipeline.step(s);
-  pipeline.flush();
-  *fit = pipeline.pair_term_fit();
-  return pipeline.estimate();
+  return after_drive(
+      p,
+      [&](std::vector<Sample> s) {
+        return wheel_torque_through_tcu(std::move(s), p.vehicle, 1.0 + 1.2 * (kStall - 1.0),
+                                        engine_speed);
+      },
+      fit);
 }
 
 TEST(ConverterMap, AWheelTorqueBesideTheEngineSpeedShowsTheConvertersShare) {

@@ -293,8 +293,9 @@ class Pipeline {
   bool ended_drive_read_another_load() const;
   /// Keeps the belief without that drive, until a later drive tells whether its load is gone.
   void hold_interlude();
-  /// Copies the regressor in use into its kind's slot.
-  void save_regressor(RlsEstimator* rls, BayesEstimator* bayes) const;
+  /// Copies the kind of regressor in use from one pair of slots to another.
+  void copy_regressor(const RlsEstimator& rls, const BayesEstimator& bayes, RlsEstimator* rls_to,
+                      BayesEstimator* bayes_to) const;
   /// At a later stop: the belief without the held drive again, if the load went back.
   bool judge_interlude();
   /// Offer the tick's extractions to the supervisor.
