@@ -66,6 +66,22 @@ PipelineParams params_for(const Config& config, const std::string& estimator) {
   return params;
 }
 
+/// The published std at the end (relative to the mass): all of it, and its model part.
+struct EndStd {
+  double mass = 0.0;
+  double model = 0.0;
+};
+
+EndStd end_std(const Estimate& last) {
+  const double mass = last.mass_kg > 0.0 ? last.mass_kg : 1.0;
+  return EndStd{last.mass_std_kg / mass, last.mass_model_std_kg / mass};
+}
+
+void add_end_std(const EndStd& std, nlohmann::json* j) {
+  (*j)["mass_std_end_pct"] = 100.0 * std.mass;
+  (*j)["model_std_end_pct"] = 100.0 * std.model;
+}
+
 /// What the lifetime drive learnt (Pipeline::learnt_scale(), after the drive), and what its
 /// last estimate's std was made of (relative to its mass): the interval's honesty, by part.
 struct Learnt {
@@ -73,8 +89,7 @@ struct Learnt {
   double scale_std = 0.0;
   long evidence = 0;
   long changes = 0;
-  double mass_std = 0.0;   ///< the published std (regression and model)
-  double model_std = 0.0;  ///< its model part: the scale, the floor, the rotating masses
+  EndStd end_std;  ///< the published std, and its model part (the scale, the floor, ...)
   /// The launches and stops (TyreWatch): this drive's counts and the launches' mean log s (NaN:
   /// none), the largest step found at the drive's start (in its std), the tyre changes told.
   double tyre_drive_launches = 0.0;
@@ -109,10 +124,8 @@ EstimatorResult lifetime_drive(const Variant& v, const DecodedDrive& d, const Tr
   }
   EstimatorResult r = run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
   const LearntScale& scale = pipeline->learnt_scale();
-  const Estimate& last = pipeline->estimate();
-  const double mass = last.mass_kg > 0.0 ? last.mass_kg : 1.0;
-  *learnt = Learnt{scale.scale(),         scale.relative_std(),    scale.state().evidence,
-                   scale.state().changes, last.mass_std_kg / mass, last.mass_model_std_kg / mass};
+  *learnt = Learnt{scale.scale(), scale.relative_std(), scale.state().evidence,
+                   scale.state().changes, end_std(pipeline->estimate())};
   const TyreWatch& tyres = pipeline->tyre_watch();
   const LaunchSums& launches = tyres.state().drive.kind[0];
   learnt->tyre_drive_launches = launches.count;
@@ -142,8 +155,7 @@ void add_learnt_fields(const Learnt& learnt, nlohmann::json* j) {
   (*j)["learnt_scale_std"] = learnt.scale_std;
   (*j)["learnt_evidence"] = learnt.evidence;
   (*j)["learnt_changes"] = learnt.changes;
-  (*j)["mass_std_end_pct"] = 100.0 * learnt.mass_std;
-  (*j)["model_std_end_pct"] = 100.0 * learnt.model_std;
+  add_end_std(learnt.end_std, j);
   (*j)["tyre_drive_launches"] = learnt.tyre_drive_launches;
   (*j)["tyre_drive_stops"] = learnt.tyre_drive_stops;
   if (std::isfinite(learnt.tyre_drive_log_ratio)) {
@@ -155,9 +167,11 @@ void add_learnt_fields(const Learnt& learnt, nlohmann::json* j) {
 }
 
 EstimatorResult fresh_drive(const Variant& v, const DecodedDrive& d, const Truth& truth,
-                            const std::string& series) {
+                            const std::string& series, EndStd* std) {
   auto pipeline = std::make_unique<Pipeline>(params_for(*d.config, v.estimator));
-  return run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
+  EstimatorResult r = run_pipeline(v.estimator, *pipeline, d.samples, truth, series);
+  *std = end_std(pipeline->estimate());
+  return r;
 }
 
 bool is_known_mass_drive(const LifetimeSpec& spec, const sim::DrawnVehicle& vehicle, int index) {
@@ -304,11 +318,14 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       add_learnt_fields(learnt, &j);
       out.json_lines += j.dump() + "\n";
       if (v.known_mass) continue;  // its fresh drives are the variant's without
-      EstimatorResult fresh = fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"));
+      EndStd fresh_std;
+      EstimatorResult fresh =
+          fresh_drive(v, d, truth, series_path(spec, v, drive.index, "fresh"), &fresh_std);
       fresh.knowledge = v.knowledge;
       j = base;
       j["mode"] = "fresh";
       add_result_fields(fresh, &j);
+      add_end_std(fresh_std, &j);
       out.json_lines += j.dump() + "\n";
     }
   }
