@@ -22,6 +22,7 @@ std::string LearningParams::validate() const {
   c.positive("max_evidence_std_fraction", max_evidence_std_fraction);
   c.positive("anchor_prior_std_fraction", anchor_prior_std_fraction);
   c.in_open_range("max_abs_log_scale", max_abs_log_scale, 0.0, 1.0);
+  c.non_negative("drive_error_std_fraction", drive_error_std_fraction);
   c.at_least("min_gear_evidence_pairs", static_cast<double>(min_gear_evidence_pairs), 1.0);
   c.in_open_range("tyre_change_std_fraction", tyre_change_std_fraction, 0.0, 0.2);
   c.nested(tyre_watch.validate());

@@ -302,7 +302,7 @@ LearntGearMasses Pipeline::gear_masses_if_ended() const {
   LearntGearMasses out = gear_masses_;
   ScaleObservation seen;
   if (scale_observation(known_mass_, belief, params_.estimator.learning,
-                        params_.estimator.model_error_std_fraction, &seen)) {
+                        params_.estimator.learning.drive_error_std_fraction, &seen)) {
     out.add_reference(load_sums_, known_mass_.mass_kg,
                       learnt_.taken_variance(seen.log_scale, seen.variance),
                       declared_scale_variance(params_.vehicle), applied_gear_masses_);
@@ -736,7 +736,7 @@ void Pipeline::end_known_mass() {
   if (!known_mass_.active) return;
   ScaleObservation seen;
   if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
-                        params_.estimator.model_error_std_fraction, &seen)) {
+                        params_.estimator.learning.drive_error_std_fraction, &seen)) {
     // The scale now holds this drive's gear mix at the corrections it had, as much as it
     // takes the evidence (less for an outlier).
     gear_masses_.add_reference(load_sums_, known_mass_.mass_kg,
@@ -757,7 +757,7 @@ void Pipeline::begin_static_anchor(const StaticMass& static_mass) {
 
 bool Pipeline::anchor_observation(AnchorObservation* out) const {
   return static_anchor_.observation(params_.estimator.learning,
-                                    params_.estimator.model_error_std_fraction, out);
+                                    params_.estimator.learning.drive_error_std_fraction, out);
 }
 
 void Pipeline::end_static_anchor() {
@@ -777,7 +777,7 @@ LearntScale Pipeline::learnt_scale_if_ended() const {
   LearntScale out = learnt_with_anchor();
   ScaleObservation seen;
   if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
-                        params_.estimator.model_error_std_fraction, &seen)) {
+                        params_.estimator.learning.drive_error_std_fraction, &seen)) {
     out.add_evidence(seen.log_scale, seen.variance);
   }
   return out;
@@ -1000,14 +1000,19 @@ double Pipeline::model_std_kg(double mass_kg) const {
   const double scale_variance =
       (learnt_.replaces_datasheet() ? learnt_.log_scale_var() : declared_scale_variance(v)) +
       tyre_watch_.suspected_variance();
-  return model_std_kg(mass_kg, scale_variance);
+  // A kappa measured on this car holds the car's own share of the model error: what is left of
+  // the floor is the drive's.
+  const double floor = learnt_.learnt() ? params_.estimator.learning.drive_error_std_fraction
+                                        : params_.estimator.model_error_std_fraction;
+  return model_std_kg(mass_kg, scale_variance, floor);
 }
 
-double Pipeline::unshared_model_std_kg(double mass_kg) const { return model_std_kg(mass_kg, 0.0); }
+double Pipeline::unshared_model_std_kg(double mass_kg) const {
+  return model_std_kg(mass_kg, 0.0, params_.estimator.model_error_std_fraction);
+}
 
-double Pipeline::model_std_kg(double mass_kg, double scale_variance) const {
-  const double relative =
-      std::sqrt(scale_variance + std::pow(params_.estimator.model_error_std_fraction, 2));
+double Pipeline::model_std_kg(double mass_kg, double scale_variance, double floor) const {
+  const double relative = std::sqrt(scale_variance + floor * floor);
   // The rotating masses' and the converter map's errors move the mass by their share of it, in
   // kg (a truck's low gears, an automatic pulling away).
   if (fits_pair_terms()) {

@@ -187,6 +187,17 @@ TEST(Config, TheTyreChangesWideningIsReadAndChecked) {
       << bad.error;
 }
 
+TEST(Config, TheDrivesShareOfTheModelFloorIsReadAndChecked) {
+  const std::string section = "estimator:\n  learning:\n    drive_error_std_fraction: ";
+  const ConfigLoad ok = load_config_text(std::string(kMinimal) + section + "0.004\n", "f.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_DOUBLE_EQ(ok.config->pipeline.estimator.learning.drive_error_std_fraction, 0.004);
+  const ConfigLoad bad = load_config_text(std::string(kMinimal) + section + "-0.1\n", "f.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("estimator.learning.drive_error_std_fraction"), std::string::npos)
+      << bad.error;
+}
+
 TEST(Config, RawSectionsAreKeptForTheirLayers) {
   const ConfigLoad c = load_config_text(
       std::string(kMinimal) + "lcm:\n  url: memq://\ncan:\n  dbc: car.dbc\n", "raw.yaml");

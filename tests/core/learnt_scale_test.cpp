@@ -298,6 +298,40 @@ TEST(KnownMassTest, NewTyresOnACarThatLearntNothingWidenItsDatasheetInterval) {
               std::sqrt(declared_var + tyres * tyres + floor * floor), 0.002);
 }
 
+// The kappa a known mass measured holds the car's own share of the model error (its datasheet
+// aero, rolling and pitch errors read alike on every drive): neither that evidence nor the next
+// drive's interval counts it again. The same drives with the whole floor counted again differ
+// by the car's share alone: in the interval beyond the learnt scale, and in the scale's std.
+TEST(KnownMassTest, TheLearntScaleHoldsTheCarsShareOfTheModelFloor) {
+  const PipelineParams p = scaled_car();
+  const double drive_floor = p.estimator.learning.drive_error_std_fraction;
+  const double whole_floor = p.estimator.model_error_std_fraction;
+  ASSERT_LT(drive_floor, 0.75 * whole_floor);
+  const auto second_drive = [](const PipelineParams& params) {
+    Pipeline first(params);
+    EXPECT_TRUE(first.declare_known_mass(1600.0, 10.0));
+    drive(first, scaled_drive(1600.0, 0.0, 1, params.vehicle));
+    Pipeline second(params);
+    EXPECT_TRUE(second.restore(first.snapshot()));
+    const Estimate e = drive(second, scaled_drive(1800.0, 86400.0, 2, params.vehicle));
+    EXPECT_TRUE(second.learnt_scale().learnt());
+    return e;
+  };
+  PipelineParams counted_again = p;
+  counted_again.estimator.learning.drive_error_std_fraction = whole_floor;
+  const Estimate shared = second_drive(p);
+  const Estimate again = second_drive(counted_again);
+  // The model's relative variance beyond the learnt scale's: the floor and the rotating masses.
+  const auto beyond_scale = [](const Estimate& e) {
+    const double relative = e.mass_model_std_kg / e.mass_kg;
+    return relative * relative - e.learnt_scale_std * e.learnt_scale_std;
+  };
+  EXPECT_NEAR(beyond_scale(again) - beyond_scale(shared),
+              whole_floor * whole_floor - drive_floor * drive_floor, 1e-5);
+  EXPECT_LT(shared.learnt_scale_std, again.learnt_scale_std - 1e-4);
+  EXPECT_LT(shared.mass_model_std_kg, again.mass_model_std_kg);
+}
+
 TEST(KnownMassTest, ResetForgetsWhatWasLearnt) {
   const PipelineParams p = scaled_car();
   Pipeline first(p);

@@ -151,13 +151,14 @@ inline constexpr std::array<Field<BayesParams>, 4> kBayesFields{{
     {"credible_level", &BayesParams::credible_level},
 }};
 
-inline constexpr std::array<Field<LearningParams>, 9> kLearningFields{{
+inline constexpr std::array<Field<LearningParams>, 10> kLearningFields{{
     {"drift_std_per_drive", &LearningParams::drift_std_per_drive},
     {"outlier_sigma", &LearningParams::outlier_sigma},
     {"min_evidence_pairs", &LearningParams::min_evidence_pairs},
     {"max_evidence_std_fraction", &LearningParams::max_evidence_std_fraction},
     {"anchor_prior_std_fraction", &LearningParams::anchor_prior_std_fraction},
     {"max_abs_log_scale", &LearningParams::max_abs_log_scale},
+    {"drive_error_std_fraction", &LearningParams::drive_error_std_fraction},
     {"learn_gear_masses", &LearningParams::learn_gear_masses},
     {"min_gear_evidence_pairs", &LearningParams::min_gear_evidence_pairs},
     {"tyre_change_std_fraction", &LearningParams::tyre_change_std_fraction},

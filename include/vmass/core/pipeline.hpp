@@ -333,8 +333,8 @@ class Pipeline {
   double model_std_kg(double mass_kg) const;
   /// The part of it that two readings of one load do not share: all but the lumped scale's.
   double unshared_model_std_kg(double mass_kg) const;
-  /// The model error with the lumped scale's variance given.
-  double model_std_kg(double mass_kg, double scale_variance) const;
+  /// The model error with the lumped scale's variance and the floor's relative std given.
+  double model_std_kg(double mass_kg, double scale_variance, double floor) const;
 
   PipelineParams params_;
   StaticInitializer static_init_;
