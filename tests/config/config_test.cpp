@@ -173,29 +173,31 @@ TEST(Config, TheDrivelineModeIsReadAndChecked) {
       << bad.error;
 }
 
+// estimator.learning.KEY: `good` is read into `field`, `bad` is refused naming the key.
+void expect_learning_key_read_and_checked(const std::string& key, double LearningParams::*field,
+                                          double good, const std::string& bad) {
+  const std::string section = "estimator:\n  learning:\n    " + key + ": ";
+  const ConfigLoad ok =
+      load_config_text(std::string(kMinimal) + section + std::to_string(good) + "\n", "l.yaml");
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  EXPECT_DOUBLE_EQ(ok.config->pipeline.estimator.learning.*field, good);
+  const ConfigLoad refused =
+      load_config_text(std::string(kMinimal) + section + bad + "\n", "l.yaml");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error.find("estimator.learning." + key), std::string::npos) << refused.error;
+}
+
 TEST(Config, TheTyreChangesWideningIsReadAndChecked) {
-  const std::string section = "estimator:\n  learning:\n    tyre_change_std_fraction: ";
   EXPECT_DOUBLE_EQ(load_config_text(kMinimal, "default.yaml")
                        .config->pipeline.estimator.learning.tyre_change_std_fraction,
                    0.02);
-  const ConfigLoad ok = load_config_text(std::string(kMinimal) + section + "0.03\n", "t.yaml");
-  ASSERT_TRUE(ok.ok()) << ok.error;
-  EXPECT_DOUBLE_EQ(ok.config->pipeline.estimator.learning.tyre_change_std_fraction, 0.03);
-  const ConfigLoad bad = load_config_text(std::string(kMinimal) + section + "0\n", "t.yaml");
-  ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.error.find("estimator.learning.tyre_change_std_fraction"), std::string::npos)
-      << bad.error;
+  expect_learning_key_read_and_checked("tyre_change_std_fraction",
+                                       &LearningParams::tyre_change_std_fraction, 0.03, "0");
 }
 
 TEST(Config, TheDrivesShareOfTheModelFloorIsReadAndChecked) {
-  const std::string section = "estimator:\n  learning:\n    drive_error_std_fraction: ";
-  const ConfigLoad ok = load_config_text(std::string(kMinimal) + section + "0.004\n", "f.yaml");
-  ASSERT_TRUE(ok.ok()) << ok.error;
-  EXPECT_DOUBLE_EQ(ok.config->pipeline.estimator.learning.drive_error_std_fraction, 0.004);
-  const ConfigLoad bad = load_config_text(std::string(kMinimal) + section + "-0.1\n", "f.yaml");
-  ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.error.find("estimator.learning.drive_error_std_fraction"), std::string::npos)
-      << bad.error;
+  expect_learning_key_read_and_checked("drive_error_std_fraction",
+                                       &LearningParams::drive_error_std_fraction, 0.004, "-0.1");
 }
 
 TEST(Config, RawSectionsAreKeptForTheirLayers) {
