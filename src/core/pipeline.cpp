@@ -301,8 +301,7 @@ LearntGearMasses Pipeline::gear_masses_if_ended() const {
   if (belief.pairs_used == 0) return gear_masses_;
   LearntGearMasses out = gear_masses_;
   ScaleObservation seen;
-  if (scale_observation(known_mass_, belief, params_.estimator.learning,
-                        params_.estimator.learning.drive_error_std_fraction, &seen)) {
+  if (scale_observation(known_mass_, belief, params_.estimator.learning, &seen)) {
     out.add_reference(load_sums_, known_mass_.mass_kg,
                       learnt_.taken_variance(seen.log_scale, seen.variance),
                       declared_scale_variance(params_.vehicle), applied_gear_masses_);
@@ -735,8 +734,7 @@ void Pipeline::begin_known_mass() {
 void Pipeline::end_known_mass() {
   if (!known_mass_.active) return;
   ScaleObservation seen;
-  if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
-                        params_.estimator.learning.drive_error_std_fraction, &seen)) {
+  if (scale_observation(known_mass_, belief_state(), params_.estimator.learning, &seen)) {
     // The scale now holds this drive's gear mix at the corrections it had, as much as it
     // takes the evidence (less for an outlier).
     gear_masses_.add_reference(load_sums_, known_mass_.mass_kg,
@@ -756,8 +754,7 @@ void Pipeline::begin_static_anchor(const StaticMass& static_mass) {
 }
 
 bool Pipeline::anchor_observation(AnchorObservation* out) const {
-  return static_anchor_.observation(params_.estimator.learning,
-                                    params_.estimator.learning.drive_error_std_fraction, out);
+  return static_anchor_.observation(params_.estimator.learning, out);
 }
 
 void Pipeline::end_static_anchor() {
@@ -776,8 +773,7 @@ LearntScale Pipeline::learnt_with_anchor() const {
 LearntScale Pipeline::learnt_scale_if_ended() const {
   LearntScale out = learnt_with_anchor();
   ScaleObservation seen;
-  if (scale_observation(known_mass_, belief_state(), params_.estimator.learning,
-                        params_.estimator.learning.drive_error_std_fraction, &seen)) {
+  if (scale_observation(known_mass_, belief_state(), params_.estimator.learning, &seen)) {
     out.add_evidence(seen.log_scale, seen.variance);
   }
   return out;

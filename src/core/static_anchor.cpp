@@ -31,8 +31,7 @@ void StaticAnchor::add(const RegressionPair& pair) {
   regression_.update(pair);
 }
 
-bool StaticAnchor::observation(const LearningParams& params, double drive_error_std,
-                               AnchorObservation* out) const {
+bool StaticAnchor::observation(const LearningParams& params, AnchorObservation* out) const {
   if (!active_) return false;
   if (held_) {
     *out = held_evidence_;
@@ -41,7 +40,7 @@ bool StaticAnchor::observation(const LearningParams& params, double drive_error_
   BayesEstimator closed = regression_;
   closed.flush();
   ScaleObservation seen;
-  if (!scale_observation(reading_, closed.state(), params, drive_error_std, &seen)) return false;
+  if (!scale_observation(reading_, closed.state(), params, &seen)) return false;
   out->log_scale = seen.log_scale;
   out->variance = seen.variance;
   out->common_std = common_std_kg_ / reading_.mass_kg;

@@ -193,16 +193,17 @@ TEST(KnownMassTest, ADriveIsEvidenceFromEnoughPairsAndANarrowEnoughRegression) {
   drive.mass_kg = 1680.0;
   drive.mass_std_kg = 0.05 * 1680.0;
   drive.pairs_used = 400;
-  const LearningParams params;
+  LearningParams params;
+  params.drive_error_std_fraction = 0.01;
   ScaleObservation seen;
-  ASSERT_TRUE(scale_observation(known, drive, params, 0.01, &seen));
+  ASSERT_TRUE(scale_observation(known, drive, params, &seen));
   EXPECT_NEAR(seen.log_scale, std::log(1.02 * 1680.0 / 1600.0), 1e-12);
   EXPECT_NEAR(seen.variance, 0.05 * 0.05 + 0.005 * 0.005 + 0.01 * 0.01, 1e-12);
   drive.mass_std_kg = 0.07 * 1680.0;  // beyond max_evidence_std_fraction (6 %)
-  EXPECT_FALSE(scale_observation(known, drive, params, 0.01, &seen));
+  EXPECT_FALSE(scale_observation(known, drive, params, &seen));
   drive.mass_std_kg = 0.01 * 1680.0;
   drive.pairs_used = 99;  // below min_evidence_pairs
-  EXPECT_FALSE(scale_observation(known, drive, params, 0.01, &seen));
+  EXPECT_FALSE(scale_observation(known, drive, params, &seen));
 }
 
 TEST(KnownMassTest, AnImplausibleDeclarationIsRefusedAndChangesNothing) {

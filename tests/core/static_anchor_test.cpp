@@ -78,12 +78,14 @@ TEST(StaticAnchorTest, ItsRegressionReadsThePairsAgainstTheReading) {
   BayesParams bayes;
   bayes.noise_std_guess_n = 30.0;
   StaticAnchor anchor(bayes);
+  LearningParams learning;
+  learning.drive_error_std_fraction = 0.01;
   AnchorObservation seen;
-  EXPECT_FALSE(anchor.observation(LearningParams{}, 0.01, &seen));  // not begun
+  EXPECT_FALSE(anchor.observation(learning, &seen));  // not begun
   const MassPrior reading{1600.0, 50.0, 0.0, 300.0};
   const MassPrior vague{1600.0, 480.0, 0.0, 300.0};
   anchor.begin(reading, 40.0, 1.0, vague);
-  EXPECT_FALSE(anchor.observation(LearningParams{}, 0.01, &seen));  // no pair yet
+  EXPECT_FALSE(anchor.observation(learning, &seen));  // no pair yet
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, 30.0);
   std::uniform_real_distribution<double> accel(-1.0, 1.0);
@@ -93,7 +95,7 @@ TEST(StaticAnchorTest, ItsRegressionReadsThePairsAgainstTheReading) {
     pair.y_n = 1.04 * 1600.0 * pair.delta_accel_mps2 + noise(rng);
     anchor.add(pair);
   }
-  ASSERT_TRUE(anchor.observation(LearningParams{}, 0.01, &seen));
+  ASSERT_TRUE(anchor.observation(learning, &seen));
   EXPECT_NEAR(seen.log_scale, std::log(1.04), 3e-3);
   EXPECT_DOUBLE_EQ(seen.common_std, 40.0 / 1600.0);
   // Its own part: the reading's 30 kg beyond the kerb's, the model floor, the regression's.
@@ -108,10 +110,10 @@ TEST(StaticAnchorTest, ItsRegressionReadsThePairsAgainstTheReading) {
   other.y_n = 3000.0;
   restored.add(other);
   AnchorObservation held;
-  ASSERT_TRUE(restored.observation(LearningParams{}, 0.01, &held));
+  ASSERT_TRUE(restored.observation(learning, &held));
   EXPECT_EQ(held.log_scale, seen.log_scale);
   restored.end();
-  EXPECT_FALSE(restored.observation(LearningParams{}, 0.01, &held));
+  EXPECT_FALSE(restored.observation(learning, &held));
 }
 
 }  // namespace

@@ -28,9 +28,9 @@ struct ScaleObservation {
 
 /// The evidence of the regression `drive` (on the known load since the declaration); false when
 /// it has too few pairs or too wide an interval to say anything (LearningParams).
-/// drive_error_std: the relative error a drive leaves beyond its regression's std and the car's
-/// own share of the model error, which kappa holds (LearningParams::drive_error_std_fraction).
+/// Its variance holds the regression's, the declaration's and the part of the model error that
+/// differs from drive to drive (LearningParams::drive_error_std_fraction): kappa holds the rest.
 bool scale_observation(const KnownMass& known, const RegressorState& drive,
-                       const LearningParams& params, double drive_error_std, ScaleObservation* out);
+                       const LearningParams& params, ScaleObservation* out);
 
 }  // namespace vmass

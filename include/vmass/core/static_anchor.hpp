@@ -48,8 +48,7 @@ class StaticAnchor {
 
   /// The evidence of the pairs so far; false when inactive, or when they are too few or too
   /// wide (scale_observation's gates).
-  bool observation(const LearningParams& params, double drive_error_std,
-                   AnchorObservation* out) const;
+  bool observation(const LearningParams& params, AnchorObservation* out) const;
 
  private:
   bool active_ = false;
