@@ -1,12 +1,30 @@
-"""vmass-suite --truck-known-mass-drives: a heavy truck's lifetime declares its true mass at
+"""vmass-suite --truck-known-mass-drives: a heavy truck's lifetime declares a known mass at
 those drives (issue 30: two known masses at different loads for a truck), every other class at
---known-mass-drives; the variants without a known mass declare nothing.
+--known-mass-drives; the variants without a known mass declare nothing. What is declared is the
+true mass as a weighbridge ticket reads it: off by an error drawn from the declared std (0.5 %),
+the same for every variant of one drive, another on another drive.
 
 Usage: truck_known_masses_test.py VMASS-SUITE WORK-DIR"""
 import json
 import pathlib
 import subprocess
 import sys
+
+
+def check_tickets(tickets):
+    """Each drive's ticket error: one for all its variants, within 4 std of the truth, not zero,
+    and another on each drive."""
+    errors = []
+    for (vehicle, drive), seen in sorted(tickets.items()):
+        if len(seen) != 1:
+            sys.exit(f"{vehicle} drive {drive}: the variants declared different masses {seen}")
+        error = seen.pop()
+        if not 0.0 < abs(error) < 4 * 0.005:
+            sys.exit(f"{vehicle} drive {drive}: the ticket is off by {100 * error:+.3f} %, "
+                     "expected a draw from a 0.5 % std, not exact")
+        errors.append(error)
+    if len(set(errors)) != len(errors):
+        sys.exit(f"two drives declared with the same ticket error: {errors}")
 
 
 def main():
@@ -17,7 +35,7 @@ def main():
                     "--known-mass-drives", "1", "--truck-known-mass-drives", "1,2",
                     "--knowledge", "known_scale", "--estimators", "bayes", "--jobs", "2",
                     "--out", str(out)], check=True)
-    declared, loads = {}, {}
+    declared, loads, tickets = {}, {}, {}
     for line in out.read_text().splitlines():
         r = json.loads(line)
         if r["mode"] != "lifetime":
@@ -27,8 +45,11 @@ def main():
             declared.setdefault(r["vehicle"], set())
             if r["known_mass_declared"]:
                 declared[r["vehicle"]].add(r["drive"])
+                tickets.setdefault((r["vehicle"], r["drive"]), set()).add(
+                    r["known_mass_declared_kg"] / r["initial_true_mass_kg"] - 1.0)
         elif r["known_mass_declared"]:
             sys.exit(f"{r['vehicle']} drive {r['drive']}: declared without a known mass")
+    check_tickets(tickets)
     want = {"heavy_truck-7": {1, 2}, "city_car-1": {1}}
     if declared != want:
         sys.exit(f"declared at {declared}, expected {want}")

@@ -14,6 +14,7 @@
 #include "vmass/sim/lifetime.hpp"
 #include "vmass/sim/population_drive.hpp"
 #include "vmass/sim/population_scenarios.hpp"
+#include "vmass/sim/random_stream.hpp"
 #include "vmass/sim/simulator.hpp"
 
 namespace vmass::suite {
@@ -183,6 +184,19 @@ bool is_known_mass_drive(const LifetimeSpec& spec, const sim::DrawnVehicle& vehi
   return false;
 }
 
+/// The mass a known-mass drive declares: the truth as a weighbridge reads it, off by an error
+/// drawn from the std the declaration states. A ticket that is always exact would teach the
+/// learnt scale more than any real one can. Drawn per (vehicle, life, drive), the same for
+/// every variant of that drive.
+double ticket_mass_kg(const LifetimeSpec& spec, const sim::DrawnVehicle& vehicle, int index,
+                      double true_mass_kg) {
+  const std::uint64_t drive_id =
+      static_cast<std::uint64_t>(spec.life) * 1024 + static_cast<std::uint64_t>(index);
+  sim::RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
+                        sim::hash_name("known_mass_ticket") ^ sim::splitmix64(drive_id));
+  return true_mass_kg * (1.0 + spec.known_mass_std_fraction * rng.normal());
+}
+
 std::string series_path(const LifetimeSpec& spec, const Variant& v, int drive, const char* mode) {
   if (spec.series_dir.empty()) return "";
   return spec.series_dir + "/" + variant_name(spec, v) + "_life" + std::to_string(spec.life) +
@@ -295,9 +309,10 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       bool restored = false;
       std::string restore_error;
       const bool declares = v.known_mass && is_known_mass_drive(spec, vehicle, drive.index);
-      const double true_mass_kg = result.truth.front().mass_kg;
-      const Declarations told{declares ? true_mass_kg : 0.0,
-                              spec.known_mass_std_fraction * true_mass_kg,
+      const double ticket_kg =
+          ticket_mass_kg(spec, vehicle, drive.index, result.truth.front().mass_kg);
+      const Declarations told{declares ? ticket_kg : 0.0,
+                              spec.known_mass_std_fraction * ticket_kg,
                               spec.tyre_change_declared && drive.index == spec.tyre_change_drive};
       Learnt learnt;
       EstimatorResult life =
@@ -314,6 +329,7 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       if (!restore_error.empty()) j["restore_message"] = without_dir(restore_error, work_dir);
       add_result_fields(life, &j);
       j["known_mass_declared"] = declares;
+      if (declares) j["known_mass_declared_kg"] = told.known_mass_kg;
       j["tyres_declared"] = told.tyres_changed;
       add_learnt_fields(learnt, &j);
       out.json_lines += j.dump() + "\n";

@@ -42,8 +42,9 @@ struct LifetimeSpec {
   std::string keep_dir;
   /// "": no series; else per-tick CSVs (10 Hz) of every drive, both modes, in DIR.
   std::string series_dir;
-  /// Non-empty: every variant is also carried with its true mass declared as a known mass
-  /// (Pipeline::declare_known_mass, a weighbridge ticket) at the start of these drives (1-based).
+  /// Non-empty: every variant is also carried with a known mass declared (Pipeline::
+  /// declare_known_mass, a weighbridge ticket) at the start of these drives (1-based): the true
+  /// mass off by an error drawn from known_mass_std_fraction, the std it is declared with.
   std::vector<int> known_mass_drives;
   /// Heavy trucks: these drives instead (empty: known_mass_drives). Issue 30 asks a truck for two
   /// known masses at different loads (every even drive's load is changed), a car for one.
