@@ -311,8 +311,7 @@ LifetimeResult run_lifetime(const LifetimeSpec& spec, const std::string& work_di
       const bool declares = v.known_mass && is_known_mass_drive(spec, vehicle, drive.index);
       const double ticket_kg =
           ticket_mass_kg(spec, vehicle, drive.index, result.truth.front().mass_kg);
-      const Declarations told{declares ? ticket_kg : 0.0,
-                              spec.known_mass_std_fraction * ticket_kg,
+      const Declarations told{declares ? ticket_kg : 0.0, spec.known_mass_std_fraction * ticket_kg,
                               spec.tyre_change_declared && drive.index == spec.tyre_change_drive};
       Learnt learnt;
       EstimatorResult life =
