@@ -33,8 +33,8 @@ start=$(date +%s)
 "$bin/vmass-suite" --ablation auto --scenarios paper_exp2_eps1,urban,highway --seeds "$seeds" \
   --estimators rls,bayes,paper_lp --knowledge known_scale --jobs "$jobs" --out "$out/ablation.jsonl"
 # A vehicle's Nth drive: each vehicle 10 drives in a row through the daemon's state file, loads
-# changed while parked, beside the same drives fresh, and each also with its true mass declared
-# on drive 1 (a heavy truck's on drives 1 and 2: two loads, as issue 30 asks of trucks), the
+# changed while parked, beside the same drives fresh, and each also with a known mass declared
+# on drive 1 (the true mass off by a ticket error drawn from its 0.5 % std) (a heavy truck's on drives 1 and 2: two loads, as issue 30 asks of trucks), the
 # learnt scale carried (docs/accuracy.md, "lifetime mode").
 "$bin/vmass-suite" --lifetime "${DRIVES:-10}" --lives "${LIVES:-1}" \
   --known-mass-drives 1 --truck-known-mass-drives 1,2 \

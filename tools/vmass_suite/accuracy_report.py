@@ -412,8 +412,9 @@ def known_mass_breakdown(known, first_drive, out):
 
 
 def known_mass_table(known, plain, out):
-    """The lives carried with the true mass declared as a known mass on the first drive(s)
-    (vmass-suite --known-mass-drives), beside the same drives fresh, by group of drives."""
+    """The lives carried with a known mass declared on the first drive(s) (vmass-suite
+    --known-mass-drives: the true mass off by a drawn ticket error), beside the same drives
+    fresh, by group of drives."""
     out.append(f"With a known mass declared on {declared_drives(known)} (the learnt scale "
                f"carried in the state file), beside the same drives fresh:\n")
     out.append("| deflection sensor | drives | runs | median \\|final\\| %, known mass / fresh | "

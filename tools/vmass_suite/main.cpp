@@ -19,8 +19,9 @@
 //
 // --lifetime drives each vehicle DRIVES drives in a row through the daemon's state file (loads
 // changed while parked), beside the same drives fresh (lifetime_run.hpp); K lives per vehicle;
-// --known-mass-drives also carries each with its true mass declared at those drives, a heavy
-// truck at --truck-known-mass-drives where given (issue 30: two at different loads for a truck);
+// --known-mass-drives also carries each with a known mass declared at those drives (the true
+// mass off by a drawn ticket error of 0.5 %), a heavy truck at --truck-known-mass-drives where
+// given (issue 30: two at different loads for a truck);
 // --tyre-change-drive fits new tyres (radius 1-3 % larger) before drive K of every life;
 // --tyre-change-declared has the workshop say so (vmass-ctl tyres-changed) at its start;
 // --trailer-change-drive has each tractor couple another trailer (its load, drag area and
@@ -414,8 +415,9 @@ void add_lifetime_options(CLI::App& app, Options* o) {
       ->check(CLI::Range(1, 1000));
   app.add_option("--lives", o->lives, "lives per vehicle (--lifetime)")->check(CLI::Range(1, 100));
   app.add_option("--known-mass-drives", o->known_mass_drives,
-                 "--lifetime: also carry every variant with its true mass declared as a known "
-                 "mass at the start of these drives (e.g. 1)");
+                 "--lifetime: also carry every variant with a known mass declared at the start "
+                 "of these drives (e.g. 1): the true mass off by a ticket error drawn from "
+                 "its declared 0.5 % std");
   app.add_option("--truck-known-mass-drives", o->truck_known_mass_drives,
                  "--lifetime, with --known-mass-drives: a heavy truck's drives instead (e.g. "
                  "1,2: two known masses at different loads)");
