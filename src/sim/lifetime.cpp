@@ -129,8 +129,7 @@ std::string change_load(const DrawnVehicle& vehicle, const Seats& seats, RandomS
 // New tyres: worn tread (about 2 mm) replaced by new (7-9 mm) on a radius of about 0.3 m
 // (cars) to 0.5 m (trucks): the radius grows by 1-3 %.
 double new_tyres_factor(const DrawnVehicle& vehicle, std::uint64_t life) {
-  RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
-                   hash_name("lifetime_tyres") + life);
+  RandomStream rng(vehicle.stream_seed(), hash_name("lifetime_tyres") + life);
   return 1.0 + rng.uniform(0.01, 0.03);
 }
 
@@ -156,8 +155,7 @@ struct Trailer {
 // and of its tyres and axles (the rolling coefficient).
 Trailer couple_another_trailer(const DrawnVehicle& vehicle, const Seats& seats, std::uint64_t life,
                                Load* load) {
-  RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
-                   hash_name("lifetime_trailer") + life);
+  RandomStream rng(vehicle.stream_seed(), hash_name("lifetime_trailer") + life);
   change_cargo(vehicle, seats, rng, load);
   Trailer trailer;
   trailer.drag_factor = rng.uniform(0.75, 1.3);
@@ -195,8 +193,7 @@ std::vector<LifetimeDrive> plan_lifetime(const DrawnVehicle& vehicle, int drives
                                          int trailer_change_drive) {
   const double new_tyres = new_tyres_factor(vehicle, life);
   const Seats seats = seats_of(vehicle);
-  RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
-                   hash_name("lifetime") + life);
+  RandomStream rng(vehicle.stream_seed(), hash_name("lifetime") + life);
   const std::vector<std::string> scenarios = lifetime_scenario_names();
   const std::size_t offset =
       static_cast<std::size_t>(rng.index(static_cast<int>(scenarios.size())));

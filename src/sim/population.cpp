@@ -319,7 +319,7 @@ DrawnVehicle draw_vehicle(VehicleClass vehicle_class, std::uint64_t vehicle_seed
   d.vehicle_class = vehicle_class;
   d.seed = vehicle_seed;
   d.id = std::string(vehicle_class_name(vehicle_class)) + "-" + std::to_string(vehicle_seed);
-  const std::uint64_t base = vehicle_seed * 16 + static_cast<std::uint64_t>(vehicle_class);
+  const std::uint64_t base = d.stream_seed();
   RandomStream geometry(base, hash_name("population.geometry"));
   RandomStream powertrain(base, hash_name("population.powertrain"));
   RandomStream chassis(base, hash_name("population.chassis"));

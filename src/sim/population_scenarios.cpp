@@ -673,9 +673,7 @@ std::string make_population_run(const DrawnVehicle& vehicle, std::string_view sc
   s.sensors = SensorSpec::ideal();
   s.default_noise = NoiseSet::kNone;
   // One stream per (vehicle, scenario, seed): the payload and the drive's random choices.
-  RandomStream rng(
-      seed * 1000003ULL + vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
-      hash_name(entry->name));
+  RandomStream rng(seed * 1000003ULL + vehicle.stream_seed(), hash_name(entry->name));
   ProfileBuilder builder(vehicle, style_of(vehicle));
   Built built;
   entry->build(vehicle, rng, builder, run, built);

@@ -104,7 +104,7 @@ class MessageLayout {
         s_(v.sensors),
         truck_(v.vehicle_class == VehicleClass::kHeavyTruck),
         engine_speed_(bus_has_engine_speed(v)),
-        rng_(v.seed * 16 + static_cast<std::uint64_t>(v.vehicle_class), hash_name("bus.layout")),
+        rng_(v.stream_seed(), hash_name("bus.layout")),
         next_id_(v.can.id_base) {}
 
   std::vector<Message> build() {

@@ -192,7 +192,7 @@ double ticket_mass_kg(const LifetimeSpec& spec, const sim::DrawnVehicle& vehicle
                       double true_mass_kg) {
   const std::uint64_t drive_id =
       static_cast<std::uint64_t>(spec.life) * 1024 + static_cast<std::uint64_t>(index);
-  sim::RandomStream rng(vehicle.seed * 16 + static_cast<std::uint64_t>(vehicle.vehicle_class),
+  sim::RandomStream rng(vehicle.stream_seed(),
                         sim::hash_name("known_mass_ticket") ^ sim::splitmix64(drive_id));
   return true_mass_kg * (1.0 + spec.known_mass_std_fraction * rng.normal());
 }

@@ -108,6 +108,11 @@ struct DrawnVehicle {
   /// The true vehicle with the effects that change the vehicle itself applied (its empty mass
   /// deviates from the datasheet's with mass_uncertainty).
   TrueVehicle true_vehicle(Realism realism) const;
+  /// The seed of every random stream about this vehicle (its parameters, its bus, its life),
+  /// each stream with an id of its own: one per (class, seed).
+  std::uint64_t stream_seed() const {
+    return seed * 16 + static_cast<std::uint64_t>(vehicle_class);
+  }
 };
 
 DrawnVehicle draw_vehicle(VehicleClass vehicle_class, std::uint64_t vehicle_seed);
